@@ -1,0 +1,12 @@
+# Warnings and sanitizers for every urbanpvs target, applied through one interface target so
+# that third-party headers (CGAL, nlohmann) keep their own flags.
+add_library(urbanpvs_warnings INTERFACE)
+target_compile_options(urbanpvs_warnings INTERFACE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
+                                  -Woverloaded-virtual -Wimplicit-fallthrough>
+  $<$<AND:$<BOOL:${URBANPVS_WERROR}>,$<CXX_COMPILER_ID:GNU,Clang>>:-Werror>)
+
+if(URBANPVS_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,18 @@
+# The heavy dependencies of the offline builder. All come from Debian 12's packages, installed by
+# scripts/install-deps.sh. See README.md ("Dependencies") for why each one is here.
+find_package(CGAL 5.5 REQUIRED)                     # CDT, mesher, straight skeleton, Boolean ops
+find_package(nlohmann_json 3.10 REQUIRED)           # CityJSON and GeoJSON input, reports
+find_package(CLI11 REQUIRED)                        # command lines
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(GeographicLib REQUIRED IMPORTED_TARGET geographiclib)  # WGS84 -> local metric frame
+pkg_check_modules(OSMesa REQUIRED IMPORTED_TARGET osmesa)               # off-screen cull maps
+find_package(glm REQUIRED)
+
+if(URBANPVS_WITH_TETGEN)
+  find_path(TETGEN_INCLUDE_DIR tetgen.h REQUIRED)
+  find_library(TETGEN_LIBRARY tet REQUIRED)
+  add_library(urbanpvs_tetgen INTERFACE)
+  target_include_directories(urbanpvs_tetgen SYSTEM INTERFACE ${TETGEN_INCLUDE_DIR})
+  target_link_libraries(urbanpvs_tetgen INTERFACE ${TETGEN_LIBRARY})
+  target_compile_definitions(urbanpvs_tetgen INTERFACE TETLIBRARY)
+endif()

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every system package urbanpvs needs to build, test and benchmark on Debian 12.
+# Nothing is ever installed by hand: CI and the README's quick start both call this script.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config clang clang-format
+  # geometry: triangulation, straight skeleton, Boolean operations (GPL parts of CGAL)
+  libcgal-dev libgmp-dev libmpfr-dev
+  # coordinates: WGS84 lon/lat -> local metric frame
+  libgeographiclib-dev
+  # vectors for the cull-map renderer
+  libglm-dev
+  # off-screen OpenGL for cull maps (llvmpipe)
+  libosmesa6-dev
+  # 3D occluder shrinking (optional, AGPL; only used with URBANPVS_WITH_TETGEN=ON)
+  libtet1.5-dev tetgen
+  # JSON input, command lines, tests, benchmarks
+  nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
