@@ -10,8 +10,10 @@
 
 namespace urbanpvs::geometry {
 
-/// The union of `polys` as disjoint polygons with holes (outer CCW, holes CW), with collinear
-/// and repeated vertices removed. Input polygons must be valid (see polygon_defect).
+/// The union of `polys` as disjoint, strictly simple polygons with holes (outer CCW, holes CW),
+/// collinear vertices removed. Where the exact union only touches itself at a point, that point
+/// is pulled 1 µm into the region, so the result is a subset of the exact union (never larger).
+/// Input polygons must be valid (see polygon_defect).
 std::vector<Polygon> union_polygons(const std::vector<Polygon>& polys);
 
 }  // namespace urbanpvs::geometry
