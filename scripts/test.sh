@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds urbanpvs (Release, warnings as errors) and runs the whole test
+# suite; then builds again with -fsanitize=address,undefined and runs the suite once more.
+# This is the README's test command and what CI runs (.ci/run).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+
+jobs=$(nproc)
+echo "== Release build (warnings are errors)"
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DURBANPVS_WERROR=ON
+cmake --build build/release -j"$jobs"
+ctest --test-dir build/release --output-on-failure -j"$jobs" --timeout 900
+
+if [ "${URBANPVS_SKIP_SANITIZERS:-0}" != 1 ]; then
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build"
+  cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DURBANPVS_WERROR=ON \
+    -DURBANPVS_SANITIZE=ON -DURBANPVS_BUILD_BENCHMARKS=OFF
+  cmake --build build/asan -j"$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build/asan --output-on-failure -j"$jobs" --timeout 1800
+fi
