@@ -99,18 +99,6 @@ double quantised(double top, double step) {
   return step > 0 ? std::floor(top / step) * step : top;
 }
 
-// Closes gaps narrower than `gap` in a union of footprints that were grown by gap/2: shrinking
-// back by gap/2 completes a morphological closing with mitred offsets. Straight-skeleton offsets
-// compose, so the later ε-shrink of a level equals one shrink of the grown union by ε + gap/2,
-// which stays inside the original footprints wherever no gap was closed.
-std::vector<Polygon> closed(const std::vector<Polygon>& grown_union, double gap) {
-  if (gap <= 0) return grown_union;
-  std::vector<Polygon> out;
-  for (const Polygon& p : grown_union)
-    for (Polygon& q : shrink_polygon(p, 0.5 * gap)) out.push_back(std::move(q));
-  return out;
-}
-
 Block build_block(std::vector<const Prism*> members, const BlockOptions& options) {
   Block block;
   std::sort(members.begin(), members.end(),
@@ -129,7 +117,7 @@ Block build_block(std::vector<const Prism*> members, const BlockOptions& options
         pieces.push_back(std::move(g));
     }
     grown_union = union_polygons(pieces);
-    descending.push_back({level, closed(grown_union, options.gap_tolerance)});
+    descending.push_back({level, grown_union, 0.5 * options.gap_tolerance});
   }
   std::sort(block.objects.begin(), block.objects.end());
   block.objects.erase(std::unique(block.objects.begin(), block.objects.end()), block.objects.end());

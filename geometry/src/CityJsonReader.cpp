@@ -126,7 +126,7 @@ void malformed(const std::string& file, const std::string& id, const std::string
 
 // Collects the surfaces of one geometry, with their semantic surface types where given.
 std::vector<Surface> surfaces_of(const Json& g, const std::string& file, const std::string& id) {
-  const std::string type = g.value("type", "");
+  const std::string type = string_member(g, "type");
   if (!g.contains("boundaries")) malformed(file, id, type + " geometry without \"boundaries\"");
   const Json& b = g["boundaries"];
   if (!is_array(b)) malformed(file, id, type + " geometry without \"boundaries\" array");
@@ -141,7 +141,7 @@ std::vector<Surface> surfaces_of(const Json& g, const std::string& file, const s
     if (!sem_surfaces || !values || !values->is_number_unsigned()) return {};
     const std::size_t k = values->get<std::size_t>();
     if (k >= sem_surfaces->size() || !(*sem_surfaces)[k].is_object()) return {};
-    return (*sem_surfaces)[k].value("type", "");
+    return string_member((*sem_surfaces)[k], "type");
   };
   auto child = [](const Json* v, std::size_t i) -> const Json* {
     return v && v->is_array() && i < v->size() ? &(*v)[i] : nullptr;
@@ -172,7 +172,7 @@ std::vector<Surface> surfaces_of(const Json& g, const std::string& file, const s
 }
 
 bool supported_geometry(const Json& g) {
-  const std::string t = g.is_object() ? g.value("type", "") : "";
+  const std::string t = g.is_object() ? string_member(g, "type") : "";
   return t == "Solid" || t == "MultiSolid" || t == "CompositeSolid" || t == "MultiSurface" ||
          t == "CompositeSurface";
 }
@@ -351,7 +351,8 @@ struct Objects {
       if (!c.is_string()) continue;
       const Json* child = find(c.get<std::string>());
       if (!child) continue;
-      if (child->value("type", "") == "BuildingPart")
+      if (!child->is_object()) malformed(file.file(), c.get<std::string>(), "city object is not a JSON object");
+      if (string_member(*child, "type") == "BuildingPart")
         collect_parts(c.get<std::string>(), *child, out, depth + 1);
     }
   }
@@ -426,7 +427,9 @@ void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMap
     const std::string& id = it.key();
     const Json& obj = it.value();
     if (!obj.is_object()) malformed(file, id, "city object is not a JSON object");
-    const std::string type = obj.value("type", "");
+    if (!obj.contains("type") || !obj["type"].is_string())
+      malformed(file, id, "city object has no \"type\" string");
+    const std::string type = string_member(obj, "type");
     if (type == "TINRelief") {
       read_terrain(f, id, obj, city.terrain);
       continue;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "urbanpvs/geometry/CityReader.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,6 +10,12 @@
 
 namespace urbanpvs::geometry {
 namespace detail {
+
+std::string string_member(const Json& obj, const char* key) {
+  if (!obj.is_object()) return {};
+  const auto it = obj.find(key);
+  return it != obj.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
 
 double json_number(const Json& v, const std::string& file, const std::string& feature,
                    const char* what) {
@@ -59,6 +66,11 @@ Json parse(std::string_view text, const std::string& name) {
     if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
     throw InputError(InputProblem::InvalidJson, name, "",
                      what + " (byte " + std::to_string(e.byte) + ")");
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. out_of_range.406: a number too large for a double (1e400).
+    std::string what = e.what();
+    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw InputError(InputProblem::InvalidJson, name, "", what);
   }
 }
 
@@ -111,6 +123,10 @@ struct Reader {
 };
 
 std::string slurp(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(InputProblem::Unreadable, path, "",
+                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputProblem::Unreadable, path, "", "cannot open file");
   std::ostringstream s;

@@ -34,6 +34,9 @@ InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptio
 void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
                   const ReadOptions& options, City& city);
 
+/// The string member `key` of `obj`, or "" when absent or not a string (never throws).
+std::string string_member(const Json& obj, const char* key);
+
 /// Reads a number from JSON, throwing InputError(BadStructure) naming `what` otherwise.
 double json_number(const Json& v, const std::string& file, const std::string& feature,
                    const char* what);

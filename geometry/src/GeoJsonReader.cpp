@@ -59,7 +59,7 @@ std::string feature_id(const Json& feature, std::size_t index) {
 // A geometry's polygons as raw coordinate rings: [[[x, y], ...], [hole], ...].
 std::vector<const Json*> polygons_of(const Json& g, const std::string& file,
                                      const std::string& id) {
-  const std::string type = g.value("type", "");
+  const std::string type = string_member(g, "type");
   if (!g.contains("coordinates") || !g["coordinates"].is_array())
     throw InputError(InputProblem::BadStructure, file, id, type + " without \"coordinates\"");
   const Json& c = g["coordinates"];
@@ -69,6 +69,7 @@ std::vector<const Json*> polygons_of(const Json& g, const std::string& file,
   } else {
     for (const Json& p : c) out.push_back(&p);
   }
+  if (out.empty()) throw InputError(InputProblem::InvalidGeometry, file, id, type + " without polygons");
   for (const Json* p : out)
     if (!p->is_array() || p->empty())
       throw InputError(InputProblem::InvalidGeometry, file, id, "polygon without rings");
@@ -76,7 +77,7 @@ std::vector<const Json*> polygons_of(const Json& g, const std::string& file,
 }
 
 bool is_polygonal(const Json& g) {
-  const std::string t = g.is_object() ? g.value("type", "") : "";
+  const std::string t = g.is_object() ? string_member(g, "type") : "";
   return t == "Polygon" || t == "MultiPolygon";
 }
 
@@ -275,16 +276,21 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
   HeightReader heights{file, options, report};
   std::vector<Feature> buildings, parts;
   for_each_feature(doc, file, [&](const Json& feature, std::size_t i) {
-    if (!feature.is_object() || feature.value("type", "") != "Feature")
+    if (!feature.is_object() || string_member(feature, "type") != "Feature")
       throw InputError(InputProblem::BadStructure, file, "#" + std::to_string(i),
                        "not a GeoJSON Feature");
     if (!feature.contains("geometry") || feature["geometry"].is_null()) {
       ++report.ignored_types["(feature without geometry)"];
       return;
     }
-    if (!is_polygonal(feature["geometry"])) {
+    const Json& geometry = feature["geometry"];
+    if (!geometry.is_object() || !geometry.contains("type") || !geometry["type"].is_string())
+      throw InputError(InputProblem::BadStructure, file, feature_id(feature, i),
+                       "geometry has no \"type\" string");
+    if (!is_polygonal(geometry)) {
       const Json& g = feature["geometry"];
-      ++report.ignored_types[g.is_object() ? g.value("type", "(untyped)") : "(bad geometry)"];
+      const std::string type = string_member(g, "type");
+      ++report.ignored_types[type.empty() ? "(untyped geometry)" : type];
       return;
     }
     try {

@@ -9,7 +9,7 @@ std::vector<Occluder> shrink_blocks(const std::vector<Block>& blocks, double eps
   for (std::size_t b = 0; b < blocks.size(); ++b)
     for (const BlockLevel& level : blocks[b].levels)
       for (const Polygon& region : level.region)
-        for (Polygon& shape : shrink_polygon(region, epsilon)) {
+        for (Polygon& shape : shrink_polygon(region, epsilon + level.grown_by)) {
           const Box2 box = bounds(shape);
           out.push_back({static_cast<std::uint32_t>(b), level.top_z, std::move(shape), box});
         }

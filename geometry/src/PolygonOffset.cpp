@@ -53,10 +53,23 @@ std::vector<Polygon> from_cgal(const PtrRange& result) {
 
 }  // namespace
 
+// The straight skeleton can fail on nearly degenerate input (it then throws or returns pieces
+// that are not inside the input). An occluder may always be dropped without breaking the
+// conservative contract, so any piece that does not lie inside the input is discarded.
 std::vector<Polygon> shrink_polygon(const Polygon& poly, double d) {
   if (!(d > 0)) return {poly};
-  // Empty when the whole polygon vanishes (NOTES.md: CGAL returns nothing then).
-  return from_cgal(CGAL::create_interior_skeleton_and_offset_polygons_with_holes_2(d, to_cgal(poly)));
+  std::vector<Polygon> pieces;
+  try {
+    // Empty when the whole polygon vanishes (NOTES.md: CGAL returns nothing then).
+    pieces = from_cgal(
+        CGAL::create_interior_skeleton_and_offset_polygons_with_holes_2(d, to_cgal(poly)));
+  } catch (const std::exception&) {
+    return {};
+  }
+  std::erase_if(pieces, [&](const Polygon& p) {
+    return !std::all_of(p.outer.begin(), p.outer.end(), [&](Vec2 v) { return inside(poly, v); });
+  });
+  return pieces;
 }
 
 std::vector<Polygon> grow_polygon(const Polygon& poly, double d) {

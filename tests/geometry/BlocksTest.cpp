@@ -4,10 +4,12 @@
 // sampling of ε-disks against the original footprints.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <random>
 #include <set>
 
 #include "urbanpvs/geometry/Blocks.hpp"
+#include "urbanpvs/geometry/CityReader.hpp"
 #include "urbanpvs/geometry/Occluder.hpp"
 #include "urbanpvs/geometry/PolygonUnion.hpp"
 #include "urbanpvs/geometry/RingCleanup.hpp"
@@ -111,7 +113,9 @@ TEST(Blocks, GapToleranceDecidesFusion) {
 
 TEST(Blocks, SteppedLevels) {
   const auto objects = objects_of({{0, 0, 10, 8, 10}, {10, 0, 20, 8, 20}, {100, 0, 110, 8, 5}});
-  const auto blocks = build_blocks(objects, {});
+  BlockOptions exact;
+  exact.gap_tolerance = 0;
+  const auto blocks = build_blocks(objects, exact);
   ASSERT_EQ(blocks.size(), 2u);
   ASSERT_EQ(blocks[0].levels.size(), 2u);
   EXPECT_DOUBLE_EQ(blocks[0].levels[0].top_z, 10);
@@ -156,6 +160,67 @@ TEST(Blocks, RandomClustersOccludersKeepEpsilonInsideBuildings) {
     }
   }
   EXPECT_GT(occluders, 200);
+}
+
+}  // namespace
+}  // namespace urbanpvs::geometry
+
+namespace urbanpvs::geometry {
+namespace {
+
+// On whole cities with the default gap tolerance: around every point of a shrunk occluder, the
+// ε-disk lies in footprints reaching the occluder's height, except within the gap tolerance of
+// such a footprint (gaps that narrow are closed on purpose).
+void check_city_blocks(const std::string& path, const ReadOptions& read) {
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " absent";
+  const City city = read_city({path}, read);
+  const BlockOptions options;
+  const double eps = 1.0;
+  struct Foot {
+    const Polygon* poly;
+    Box2 box;
+    double top;
+  };
+  std::vector<Foot> feet;
+  for (const CityObject& o : city.objects)
+    for (const OccluderPrism& p : o.occluders) feet.push_back({&p.footprint, bounds(p.footprint), p.top_z});
+  auto covered = [&](Vec2 q, double top) {
+    for (const Foot& f : feet) {
+      if (f.top + options.height_step < top || !f.box.grown(options.gap_tolerance).overlaps(Box2{q, q}))
+        continue;
+      if (inside(*f.poly, q)) return true;
+      bool near = false;
+      for_each_edge(*f.poly, [&](Vec2 a, Vec2 b) { near |= distance_to_segment(q, a, b) <= options.gap_tolerance; });
+      if (near) return true;
+    }
+    return false;
+  };
+  std::size_t samples = 0;
+  for (const Occluder& o : shrink_blocks(build_blocks(city.objects, options), eps))
+    for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
+      const double len = std::hypot(b.x - a.x, b.y - a.y);
+      for (double t = 0; t <= len; t += 0.5) {
+        const Vec2 p = a + (t / len) * (b - a);
+        for (int k = 0; k < 8; ++k) {
+          const double ang = k * 3.14159265358979 / 4;
+          const Vec2 q{p.x + (eps - 1e-6) * std::cos(ang), p.y + (eps - 1e-6) * std::sin(ang)};
+          ++samples;
+          ASSERT_TRUE(covered(q, o.top_z)) << path << ": occluder point (" << p.x << ", " << p.y
+                                           << ") at " << o.top_z << " m is within eps of open ground";
+        }
+      }
+    });
+  EXPECT_GT(samples, 1000u);
+}
+
+TEST(Blocks, BundledSampleCity) {
+  check_city_blocks(std::string(URBANPVS_SOURCE_DIR) + "/cities/sample/district.city.json", {});
+}
+TEST(Blocks, DelftCity) { check_city_blocks(std::string(URBANPVS_SHARED_CITIES) + "/delft.city.json", {}); }
+TEST(Blocks, HelsinkiCity) {
+  ReadOptions read;
+  read.default_height = 12;
+  check_city_blocks(std::string(URBANPVS_SHARED_CITIES) + "/helsinki_buildings.geojson", read);
 }
 
 }  // namespace

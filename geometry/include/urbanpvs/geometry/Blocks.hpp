@@ -25,8 +25,13 @@ struct BlockOptions {
 
 /// One step of a block's height field: everything of the block at least `top_z` high.
 struct BlockLevel {
-  double top_z = 0;             ///< absolute height of this level's roof plane
-  std::vector<Polygon> region;  ///< union of the footprints of occluders reaching top_z
+  double top_z = 0;  ///< absolute height of this level's roof plane
+  /// Union of the footprints of the occluders reaching top_z, each first grown by `grown_by`
+  /// (mitred offset) so that gaps narrower than the gap tolerance close. Whoever erodes it must
+  /// erode by `grown_by` more (see shrink_blocks): straight-skeleton offsets compose, so eroding
+  /// the grown union by ε + grown_by stays inside the real footprints wherever no gap was closed.
+  std::vector<Polygon> region;
+  double grown_by = 0;  ///< [Units: m]
 };
 
 struct Block {
