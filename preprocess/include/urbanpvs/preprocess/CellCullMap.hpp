@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The cull map of a view cell (thesis 5.5): z = min over samples P of max over occluders O of
+// the shadow height f(O, P). Max: for one sample, a point is hidden if any occluder hides it.
+// Min: for the cell, a point is hidden only if it is hidden from every sample; with occluders
+// shrunk by ε and samples at most 2ε apart on the cell's top edges this covers every viewpoint
+// in the cell (thesis 5.2.1, 5.3, 7.2). This is the CPU form of the thesis's two-pass stencil
+// merge; other backends must produce the same map.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "urbanpvs/geometry/Occluder.hpp"
+#include "urbanpvs/preprocess/CullMap.hpp"
+#include "urbanpvs/preprocess/OccluderShadow.hpp"
+
+namespace urbanpvs::preprocess {
+
+struct CullMapStats {
+  std::size_t shadows = 0;         ///< shadow polygons rasterized
+  std::size_t pixels_written = 0;  ///< pixel centres covered, summed over shadows
+};
+
+/// Writes the max over all occluder shadows seen from `sample` into `map` (which the caller
+/// fills with CullMap::kNothingHidden first). Shadows are clipped one pixel beyond the map.
+void render_sample(const Vec3& sample, std::span<const geometry::Occluder> occluders, CullMap& map,
+                   CullMapStats* stats = nullptr);
+
+/// The merged cull map of a cell from its samples (min over samples of the per-sample max).
+/// No samples: nothing is hidden.
+CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
+                      std::span<const geometry::Occluder> occluders, CullMapStats* stats = nullptr);
+
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A cull map (thesis 4.3.2, 5.5): an orthographic top-down height map over the ground. Each pixel
+// holds the height below which everything above that pixel is hidden (the umbra's height).
+// Heights are floats like a depth buffer; every value is rounded *down* from the exact double
+// so that a stored height is never above the true umbra (conservative).
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "urbanpvs/geometry/Polygon2.hpp"
+
+namespace urbanpvs::preprocess {
+
+using geometry::Box2;
+using geometry::Vec2;
+
+/// Pixel size and ε must satisfy ε >= k·√2/2 (thesis 7.2, corollary 5): then a shadow of an
+/// ε-shrunk occluder that covers a pixel's centre covers the whole pixel for every viewpoint
+/// within ε of the sample, so point-sampled rasterization stays conservative.
+struct CullMapSettings {
+  double epsilon = 1.0;  ///< occluder shrinking and sample spacing [Units: m] [Limit: > 0]
+  double pixel = 1.4;    ///< cull-map pixel size k [Units: m] [Limit: 0 < k <= ε·√2]
+
+  /// Largest pixel size allowed for `epsilon`.
+  static double max_pixel(double epsilon) { return epsilon * std::sqrt(2.0); }
+  /// Throws std::invalid_argument naming the value to change when the coupling is broken.
+  void validate() const;
+};
+
+/// Where the map lies: `origin` is the lower-left corner of pixel (0, 0).
+struct CullMapGrid {
+  Vec2 origin;
+  double pixel = 1;
+  int width = 0;
+  int height = 0;
+
+  Vec2 center(int i, int j) const { return {origin.x + (i + 0.5) * pixel, origin.y + (j + 0.5) * pixel}; }
+  Box2 bounds() const {
+    return {origin, {origin.x + width * pixel, origin.y + height * pixel}};
+  }
+  /// The grid of pixel size `pixel` covering `area` (grown to whole pixels).
+  static CullMapGrid covering(const Box2& area, double pixel);
+};
+
+class CullMap {
+ public:
+  /// Nothing is hidden anywhere yet: every pixel holds -infinity.
+  explicit CullMap(const CullMapGrid& grid);
+
+  const CullMapGrid& grid() const { return grid_; }
+  float at(int i, int j) const { return z_[index(i, j)]; }
+  float& at(int i, int j) { return z_[index(i, j)]; }
+  const std::vector<float>& values() const { return z_; }
+  std::vector<float>& values() { return z_; }
+
+  /// Resets every pixel to `value`.
+  void fill(float value);
+
+  static constexpr float kNothingHidden = -std::numeric_limits<float>::infinity();
+
+ private:
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(grid_.width) +
+           static_cast<std::size_t>(i);
+  }
+  CullMapGrid grid_;
+  std::vector<float> z_;
+};
+
+/// The largest float not above `z`: heights enter the map rounded towards -infinity.
+inline float float_below(double z) {
+  float f = static_cast<float>(z);
+  if (static_cast<double>(f) > z) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+
+}  // namespace urbanpvs::preprocess
