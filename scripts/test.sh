@@ -18,5 +18,6 @@ if [ "${URBANPVS_SKIP_SANITIZERS:-0}" != 1 ]; then
     -DURBANPVS_SANITIZE=ON -DURBANPVS_BUILD_BENCHMARKS=OFF
   cmake --build build/asan -j"$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" \
     ctest --test-dir build/asan --output-on-failure -j"$jobs" --timeout 1800
 fi

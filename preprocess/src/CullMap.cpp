@@ -13,9 +13,9 @@ void CullMapSettings::validate() const {
     char msg[256];
     std::snprintf(msg, sizeof msg,
                   "pixel size %.4g m is too large for epsilon %.4g m (needs epsilon >= pixel * "
-                  "sqrt(2) / 2, thesis 7.2): lower the pixel size to <= %.4g m or raise epsilon "
-                  "to >= %.4g m",
-                  pixel, epsilon, max_pixel(epsilon), pixel * std::sqrt(2.0) / 2);
+                  "(sqrt(2)/2 + 1/128), thesis 7.2): lower the pixel size to <= %.4g m or raise "
+                  "epsilon to >= %.4g m",
+                  pixel, epsilon, max_pixel(epsilon), pixel * (std::sqrt(2.0) / 2 + 1.0 / 128));
     throw std::invalid_argument(msg);
   }
 }

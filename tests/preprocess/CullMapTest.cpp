@@ -203,14 +203,14 @@ TEST(CullMap, ObjectsReachingOutsideTheMapAreVisible) {
 }
 
 TEST(CullMapSettings, RefusesPixelsTooLargeForEpsilon) {
-  CullMapSettings ok{1.0, 1.4};
+  CullMapSettings ok{1.0, 1.39};
   EXPECT_NO_THROW(ok.validate());
   CullMapSettings bad{1.0, 2.0};
   try {
     bad.validate();
     FAIL() << "accepted pixel 2 m with epsilon 1 m";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("lower the pixel size to <= 1.414"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("lower the pixel size to <= 1.399"), std::string::npos)
         << e.what();
   }
 }

@@ -20,13 +20,15 @@ using geometry::Vec2;
 
 /// Pixel size and ε must satisfy ε >= k·√2/2 (thesis 7.2, corollary 5): then a shadow of an
 /// ε-shrunk occluder that covers a pixel's centre covers the whole pixel for every viewpoint
-/// within ε of the sample, so point-sampled rasterization stays conservative.
+/// within ε of the sample, so point-sampled rasterization stays conservative. OpenGL snaps
+/// vertices to 1/256 of a pixel (llvmpipe's 8 subpixel bits), which can move a shadow's border
+/// by k·√2/256; that slack is added: ε >= k·(√2/2 + 1/128).
 struct CullMapSettings {
   double epsilon = 1.0;  ///< occluder shrinking and sample spacing [Units: m] [Limit: > 0]
-  double pixel = 1.4;    ///< cull-map pixel size k [Units: m] [Limit: 0 < k <= ε·√2]
+  double pixel = 1.39;   ///< cull-map pixel size k [Units: m] [Limit: 0 < k <= max_pixel(ε)]
 
   /// Largest pixel size allowed for `epsilon`.
-  static double max_pixel(double epsilon) { return epsilon * std::sqrt(2.0); }
+  static double max_pixel(double epsilon) { return epsilon / (std::sqrt(2.0) / 2 + 1.0 / 128); }
   /// Throws std::invalid_argument naming the value to change when the coupling is broken.
   void validate() const;
 };
