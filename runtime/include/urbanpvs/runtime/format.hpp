@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// Constants of the .pvs container format (see runtime/FORMAT.md for the byte layout). They are
+/// public so tools and tests can name sections and check versions; the layout itself is only
+/// ever read through PvsFile.
+
+#include <cstdint>
+
+namespace urbanpvs::runtime::format {
+
+/// "\x89UPVS\r\n\x1a": a non-ASCII first byte and a CR LF pair catch text-mode transfers early,
+/// like PNG's signature.
+inline constexpr unsigned char kMagic[8] = {0x89, 'U', 'P', 'V', 'S', '\r', '\n', 0x1a};
+
+/// The version this library writes and reads. A reader loads every file with the same major
+/// version unless it sets required-feature bits the reader does not know (kKnownRequiredFeatures).
+inline constexpr std::uint16_t kMajorVersion = 1;
+inline constexpr std::uint16_t kMinorVersion = 0;
+
+/// Required-feature bits understood by this reader. Version 1.0 defines none. A later minor
+/// version that changes the meaning of existing data (so that a 1.0 reader would answer wrongly)
+/// must set a new bit here; one that only appends optional data must not.
+inline constexpr std::uint32_t kKnownRequiredFeatures = 0;
+
+/// Fixed part of the header, before the section table.
+inline constexpr std::uint32_t kFixedHeaderSize = 40;
+/// One section table entry: id u32, crc32c u32, offset u64, length u64.
+inline constexpr std::uint32_t kSectionEntrySize = 24;
+/// Byte offset of the header CRC inside the fixed header (zeroed while computing it).
+inline constexpr std::uint32_t kHeaderCrcOffset = 32;
+
+/// Section identifiers. Unknown ids are skipped by readers (still checksummed), so later minor
+/// versions can add optional sections.
+enum class SectionId : std::uint32_t {
+  kMetadata = 1,
+  kObjects = 2,
+  kCells = 3,
+  kGrid = 4,
+  kPvs = 5,
+};
+
+/// Short lower-case name of a section id ("metadata", "objects", ...; "unknown" otherwise).
+const char* section_name(std::uint32_t id) noexcept;
+
+/// Cell PVS encodings (first byte of a cell's payload in the pvs section).
+enum class PvsKind : std::uint8_t {
+  kDeltaList = 0,  ///< sorted ids as varint gaps
+  kBitset = 1,     ///< bit window over the object indices
+  kDiff = 2,       ///< removals (positions) and additions (ids) against a reference cell
+};
+
+/// Longest chain of kDiff cells a reader follows before it must reach a full cell. Bounds the
+/// work (and the stack) of a random-access lookup.
+inline constexpr std::uint32_t kMaxDiffChain = 4;
+
+/// Width of the bounding boxes in the objects section.
+inline constexpr std::uint8_t kBboxFloat32 = 4;
+inline constexpr std::uint8_t kBboxFloat64 = 8;
+
+/// Fixed record sizes.
+inline constexpr std::uint32_t kCellRecordSize = 76;  // 8 f64 + 3 u32
+
+}  // namespace urbanpvs::runtime::format

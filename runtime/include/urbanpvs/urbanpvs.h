@@ -1,0 +1,115 @@
+/* SPDX-License-Identifier: MIT */
+#ifndef URBANPVS_URBANPVS_H
+#define URBANPVS_URBANPVS_H
+
+/*
+ * C API of the urbanpvs runtime: load a .pvs file, locate a point in a view cell, get the
+ * objects visible from it. A thin layer over urbanpvs::runtime::PvsFile (C++17), for engines
+ * that bind C. Plain types only; every function returns a status (or a value documented below)
+ * and never aborts.
+ *
+ * Safety on untrusted input: urbanpvs_open_* validate the whole file (header, checksums, every
+ * count, offset, string and encoded PVS) before they succeed; after that no call reads outside
+ * the buffer. The loader is fuzzed.
+ *
+ * Thread safety: a successfully opened urbanpvs_file may be queried from any number of threads
+ * at once; urbanpvs_close must not race with queries.
+ *
+ * Ownership: urbanpvs_open_memory borrows the caller's buffer, which must stay alive and
+ * unchanged until urbanpvs_close; urbanpvs_open_file owns its bytes. Strings returned point into
+ * the file's bytes and are valid until urbanpvs_close; they are UTF-8 and NOT NUL-terminated.
+ */
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Same values as urbanpvs::runtime::Status. */
+typedef enum urbanpvs_status {
+  URBANPVS_OK = 0,
+  URBANPVS_BAD_MAGIC = 1,
+  URBANPVS_UNSUPPORTED_VERSION = 2,
+  URBANPVS_UNSUPPORTED_FEATURE = 3,
+  URBANPVS_TRUNCATED = 4,
+  URBANPVS_TRAILING_BYTES = 5,
+  URBANPVS_HEADER_CHECKSUM_MISMATCH = 6,
+  URBANPVS_SECTION_CHECKSUM_MISMATCH = 7,
+  URBANPVS_MALFORMED_HEADER = 8,
+  URBANPVS_MISSING_SECTION = 9,
+  URBANPVS_MALFORMED_SECTION = 10,
+  URBANPVS_OUT_OF_RANGE = 11,
+  URBANPVS_BUFFER_TOO_SMALL = 12,
+  URBANPVS_OUT_OF_MEMORY = 13,
+  URBANPVS_IO_ERROR = 14,
+  URBANPVS_NOT_GEOGRAPHIC = 15,
+  URBANPVS_INVALID_ARGUMENT = 16
+} urbanpvs_status;
+
+/* locate() result for points outside every cell; absent neighbour. */
+#define URBANPVS_NO_CELL 0xFFFFFFFFu
+
+typedef struct urbanpvs_file urbanpvs_file;
+
+/* Static English description of a status (never NULL). */
+const char* urbanpvs_status_message(urbanpvs_status status);
+
+/* Opens the file held in data[0, size) without copying it (see Ownership above). On success
+ * *out is a new handle; on failure *out is NULL. */
+urbanpvs_status urbanpvs_open_memory(const void* data, size_t size, urbanpvs_file** out);
+
+/* Reads the file at `path` (NUL-terminated) and opens it. */
+urbanpvs_status urbanpvs_open_file(const char* path, urbanpvs_file** out);
+
+/* Releases a handle; NULL is allowed. */
+void urbanpvs_close(urbanpvs_file* file);
+
+/* Counts (0 for NULL). */
+uint32_t urbanpvs_object_count(const urbanpvs_file* file);
+uint32_t urbanpvs_cell_count(const urbanpvs_file* file);
+
+/* The cell containing the local point (x, y, z), or URBANPVS_NO_CELL (see PvsFile::locate:
+ * z must be inside the cell's z range; ties go to the lowest cell index). */
+uint32_t urbanpvs_locate(const urbanpvs_file* file, double x, double y, double z);
+
+/* Input coordinates (the input CRS, or ENU for geographic inputs) -> local: subtracts the
+ * stored origin. xyz[3] is read and overwritten. */
+urbanpvs_status urbanpvs_input_to_local(const urbanpvs_file* file, double xyz[3]);
+
+/* WGS84 latitude, longitude (degrees), ellipsoidal height (m) -> local frame, for files whose
+ * input was geographic (URBANPVS_NOT_GEOGRAPHIC otherwise). */
+urbanpvs_status urbanpvs_geodetic_to_local(const urbanpvs_file* file, double lat_deg,
+                                           double lon_deg, double h_m, double local_xyz[3]);
+
+/* Number of objects visible from `cell` (0 when out of range). */
+uint32_t urbanpvs_pvs_size(const urbanpvs_file* file, uint32_t cell);
+
+/* Number of uint32_t slots urbanpvs_pvs needs in its buffer. */
+size_t urbanpvs_decode_buffer_size(const urbanpvs_file* file);
+
+/* Writes the ascending object indices visible from `cell` to buffer[0, *count). `capacity`
+ * (in elements) must be >= urbanpvs_decode_buffer_size(). No allocation. */
+urbanpvs_status urbanpvs_pvs(const urbanpvs_file* file, uint32_t cell, uint32_t* buffer,
+                             size_t capacity, size_t* count);
+
+/* 1 when `object` is visible from `cell`, 0 otherwise (also for indices out of range). */
+int urbanpvs_is_visible(const urbanpvs_file* file, uint32_t cell, uint32_t object);
+
+/* Source id of an object (pointer into the file, not NUL-terminated) and its bounding box
+ * (min x, min y, min z, max x, max y, max z; local frame). Either output may be NULL. */
+urbanpvs_status urbanpvs_object(const urbanpvs_file* file, uint32_t object, const char** id,
+                                size_t* id_size, double bbox[6]);
+
+/* Triangle (x0, y0, x1, y1, x2, y2; local frame), z range (min, max) and neighbours of a cell
+ * (neighbour i across the edge from vertex i to vertex i+1, or URBANPVS_NO_CELL). Any output
+ * may be NULL. */
+urbanpvs_status urbanpvs_cell(const urbanpvs_file* file, uint32_t cell, double triangle[6],
+                              double z_range[2], uint32_t neighbours[3]);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* URBANPVS_URBANPVS_H */

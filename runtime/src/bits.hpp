@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+// Bit tricks the bitset PVS encoding needs, without C++20's <bit>.
+
+#include <cstdint>
+
+/// Keeps a hot loop in its own function so its state gets registers of its own instead of
+/// sharing (and spilling) them with the caller's.
+#if defined(__GNUC__) || defined(__clang__)
+#define URBANPVS_NOINLINE __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define URBANPVS_NOINLINE __declspec(noinline)
+#else
+#define URBANPVS_NOINLINE
+#endif
+
+namespace urbanpvs::runtime::detail {
+
+/// Index of the lowest set bit; `v` must be non-zero.
+inline unsigned count_trailing_zeros(std::uint32_t v) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  return static_cast<unsigned>(__builtin_ctz(v));
+#else
+  unsigned n = 0;
+  while ((v & 1u) == 0) {
+    v >>= 1;
+    ++n;
+  }
+  return n;
+#endif
+}
+
+/// Number of set bits of a byte.
+inline unsigned popcount8(unsigned v) noexcept {
+  v &= 0xFFu;
+  v = v - ((v >> 1) & 0x55u);
+  v = (v & 0x33u) + ((v >> 2) & 0x33u);
+  return (v + (v >> 4)) & 0x0Fu;
+}
+
+}  // namespace urbanpvs::runtime::detail

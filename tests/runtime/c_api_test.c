@@ -1,0 +1,71 @@
+/* SPDX-License-Identifier: MIT */
+/* The C API from a translation unit compiled as C99: open the golden file, locate, decode. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "urbanpvs/urbanpvs.h"
+
+static int failures = 0;
+
+#define CHECK(cond)                                                      \
+  do {                                                                   \
+    if (!(cond)) {                                                       \
+      fprintf(stderr, "%s:%d: failed: %s\n", __FILE__, __LINE__, #cond); \
+      ++failures;                                                        \
+    }                                                                    \
+  } while (0)
+
+int main(int argc, char** argv) {
+  urbanpvs_file* file = NULL;
+  uint32_t* buffer;
+  size_t count = 0, id_size = 0;
+  const char* id = NULL;
+  double bbox[6], triangle[6], z[2], xyz[3] = {85002.0, 446002.0, 0.25}, local[3];
+  uint32_t neighbours[3], cell;
+  if (argc != 2) {
+    fprintf(stderr, "usage: %s GOLDEN.pvs\n", argv[0]);
+    return 2;
+  }
+  CHECK(urbanpvs_open_file("/nonexistent.pvs", &file) == URBANPVS_IO_ERROR && file == NULL);
+  CHECK(urbanpvs_open_memory("not a pvs file", 14, &file) == URBANPVS_BAD_MAGIC);
+  CHECK(strcmp(urbanpvs_status_message(URBANPVS_BAD_MAGIC), "not a .pvs file (bad magic)") == 0);
+  CHECK(urbanpvs_open_file(argv[1], &file) == URBANPVS_OK && file != NULL);
+  if (file == NULL) return 1;
+  CHECK(urbanpvs_object_count(file) == 120);
+  CHECK(urbanpvs_cell_count(file) == 6);
+
+  CHECK(urbanpvs_input_to_local(file, xyz) == URBANPVS_OK);
+  CHECK(xyz[0] == 2.0 && xyz[1] == 2.0 && xyz[2] == 1.75);
+  CHECK(urbanpvs_locate(file, xyz[0], xyz[1], xyz[2]) == 0);
+  cell = urbanpvs_locate(file, 12.0, 2.0, 1.75);
+  CHECK(cell == 2);
+  CHECK(urbanpvs_locate(file, 100.0, 2.0, 1.75) == URBANPVS_NO_CELL);
+  CHECK(urbanpvs_geodetic_to_local(file, 52.0, 4.0, 0.0, local) == URBANPVS_NOT_GEOGRAPHIC);
+
+  buffer = (uint32_t*)malloc(urbanpvs_decode_buffer_size(file) * sizeof *buffer);
+  CHECK(urbanpvs_pvs(file, cell, buffer, 1, &count) == URBANPVS_BUFFER_TOO_SMALL);
+  CHECK(urbanpvs_pvs(file, cell, buffer, urbanpvs_decode_buffer_size(file), &count) == URBANPVS_OK);
+  CHECK(count == 10 && urbanpvs_pvs_size(file, cell) == 10);
+  CHECK(buffer[1] == 3 && buffer[9] == 111);
+  CHECK(urbanpvs_pvs(file, 6, buffer, urbanpvs_decode_buffer_size(file), &count) ==
+        URBANPVS_OUT_OF_RANGE);
+  free(buffer);
+  CHECK(urbanpvs_is_visible(file, 2, 3) == 1);
+  CHECK(urbanpvs_is_visible(file, 2, 39) == 0);
+  CHECK(urbanpvs_is_visible(file, 99, 3) == 0);
+
+  CHECK(urbanpvs_object(file, 3, &id, &id_size, bbox) == URBANPVS_OK);
+  CHECK(id_size == 18 && strncmp(id, "NL.IMBAG.Pand.1003", id_size) == 0);
+  CHECK(bbox[0] == 20.0 && bbox[5] == 9.0);
+  CHECK(urbanpvs_object(file, 120, &id, &id_size, bbox) == URBANPVS_OUT_OF_RANGE);
+  CHECK(urbanpvs_cell(file, 2, triangle, z, neighbours) == URBANPVS_OK);
+  CHECK(triangle[0] == 10.0 && triangle[2] == 20.0 && z[1] == 3.0);
+  CHECK(neighbours[0] == URBANPVS_NO_CELL && neighbours[1] == 3 && neighbours[2] == 1);
+  CHECK(urbanpvs_cell(file, 2, NULL, NULL, NULL) == URBANPVS_OK);
+  CHECK(urbanpvs_cell(NULL, 2, NULL, NULL, NULL) == URBANPVS_INVALID_ARGUMENT);
+  urbanpvs_close(file);
+  urbanpvs_close(NULL);
+  if (failures == 0) printf("C API: all checks passed\n");
+  return failures == 0 ? 0 : 1;
+}
