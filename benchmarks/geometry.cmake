@@ -1,0 +1,4 @@
+# Geometry stage: view-cell subdivision (thesis 5.3) of generated cities of 1, 4 and 8 km².
+add_executable(view_cells_benchmark ${CMAKE_CURRENT_LIST_DIR}/view_cells_benchmark.cpp)
+target_link_libraries(view_cells_benchmark PRIVATE urbanpvs::geometry urbanpvs::cities
+                      benchmark::benchmark urbanpvs_warnings)

@@ -1,0 +1,394 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// View cells as a refined constrained Delaunay triangulation of free space (thesis 5.3). Kept in
+// its own translation unit: CGAL's CDT and mesher take ~12 s and 850 MB to compile (NOTES.md).
+//
+// Pass 1 inserts every footprint ring and every region ring as a polyline constraint, unchanged:
+// the triangulation splits them where they cross or touch, and free space is classified by
+// winding numbers, so buildings that share walls, touch at corners, overlap or nest (a tower on
+// its podium) need no Boolean union first and leave no sliver between them (thesis 5.4). Pass 2
+// triangulates the boundary of free space alone and refines it with CGAL's Delaunay mesher.
+//
+// Cells must never enter a building (thesis 5.3: "occluders cannot intersect view cells"), and
+// that is kept exact: the only inexact points, the mesher's midpoints of slanted walls and the
+// crossings of footprints, are moved by a few units in the last place onto the free side when
+// rounding put them inside a building.
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <unordered_map>
+
+#include "BoxGrid.hpp"
+#include "FreeSpaceTriangulation.hpp"
+
+namespace urbanpvs::geometry::detail {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_2;
+
+// Winding numbers of a face: how many obstacles and how many region polygons contain it.
+struct FaceInfo {
+  int obstacle = 0;
+  int region = 0;
+  bool seen = false;
+  std::int32_t index = -1;  // output triangle, -1 for faces outside free space
+};
+
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, K>;
+using Fb = CGAL::Delaunay_mesh_face_base_2<
+    K, CGAL::Constrained_Delaunay_triangulation_face_base_2<
+           K, CGAL::Constrained_triangulation_face_base_2<
+                  K, CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>>>>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// Exact_predicates_tag: footprints of real cities cross each other; the crossings are computed
+// (rounded) and inserted as vertices.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+// The "plus" hierarchy remembers which input ring every constrained edge came from, also after
+// the mesher split it: that is what the winding numbers are computed from.
+using Cdtp = CGAL::Constrained_triangulation_plus_2<Cdt>;
+using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Cdtp>;
+using Mesher = CGAL::Delaunay_mesher_2<Cdtp, Criteria>;
+using Vertex_handle = Cdtp::Vertex_handle;
+using Face_handle = Cdtp::Face_handle;
+
+enum Kind { kObstacle = 0, kRegion = 1 };
+
+struct RingConstraint {
+  Cdtp::Constraint_id id;
+  Kind kind;
+  int sign = 1;  // +1 when the ring's inside (polygon side) is on its left
+};
+
+struct PairHash {
+  std::size_t operator()(const std::pair<const void*, const void*>& p) const {
+    const auto a = reinterpret_cast<std::uintptr_t>(p.first);
+    const auto b = reinterpret_cast<std::uintptr_t>(p.second);
+    return std::hash<std::uintptr_t>()(a * 0x9E3779B97F4A7C15ull ^ b);
+  }
+};
+
+// For every constrained edge {u, w}: the number of ring edges running u→w minus those running
+// w→u, per kind, with u the vertex at the lower address. Rings have their inside on the left
+// (outer CCW, holes CW), so crossing u→w from its left to its right lowers the winding by this.
+using NetCrossings =
+    std::unordered_map<std::pair<const void*, const void*>, std::array<int, 2>, PairHash>;
+
+NetCrossings net_crossings(const Cdtp& cdt, const std::vector<RingConstraint>& rings) {
+  NetCrossings net;
+  for (const RingConstraint& r : rings) {
+    Vertex_handle prev;
+    for (Vertex_handle v : cdt.vertices_in_constraint(r.id)) {
+      if (prev != Vertex_handle() && prev != v) {
+        const void* a = &*prev;
+        const void* b = &*v;
+        if (a < b)
+          net[{a, b}][r.kind] += r.sign;
+        else
+          net[{b, a}][r.kind] -= r.sign;
+      }
+      prev = v;
+    }
+  }
+  return net;
+}
+
+// Thesis 5.3 asks for cells in free space only. A flood fill from the infinite face (winding 0)
+// adds the net ring crossings at every constrained edge; free space is inside some region ring
+// (region > 0) and inside no footprint (obstacle == 0). This generalises the usual "odd nesting
+// level" marking to overlapping and nested footprints.
+void classify(Cdtp& cdt, const std::vector<RingConstraint>& rings) {
+  const NetCrossings net = net_crossings(cdt, rings);
+  for (Face_handle f : cdt.all_face_handles()) f->info() = FaceInfo{};
+  std::deque<Face_handle> queue{cdt.infinite_face()};
+  cdt.infinite_face()->info().seen = true;
+  while (!queue.empty()) {
+    const Face_handle f = queue.front();
+    queue.pop_front();
+    for (int i = 0; i < 3; ++i) {
+      const Face_handle n = f->neighbor(i);
+      if (n->info().seen) continue;
+      FaceInfo next = f->info();
+      if (f->is_constrained(i)) {
+        const void* u = &*f->vertex(Cdtp::ccw(i));  // f lies left of u→w
+        const void* w = &*f->vertex(Cdtp::cw(i));
+        const bool forward = u < w;
+        if (auto it = net.find(forward ? std::make_pair(u, w) : std::make_pair(w, u));
+            it != net.end()) {
+          const int sign = forward ? 1 : -1;
+          next.obstacle -= sign * it->second[kObstacle];
+          next.region -= sign * it->second[kRegion];
+        }
+      }
+      next.seen = true;
+      n->info() = next;
+      queue.push_back(n);
+    }
+  }
+}
+
+bool is_free(const Cdtp& cdt, Face_handle f) {
+  return !cdt.is_infinite(f) && f->info().obstacle == 0 && f->info().region > 0;
+}
+
+Point to_point(Vec2 v) {
+  return {v.x, v.y};
+}
+
+CGAL::Bounded_side side_of(const Ring& r, const Point& p) {
+  std::vector<Point> pts;
+  pts.reserve(r.size());
+  for (Vec2 v : r) pts.push_back(to_point(v));
+  return CGAL::bounded_side_2(pts.begin(), pts.end(), p, K());
+}
+
+// Exact: strictly inside the outer ring and strictly outside every hole.
+bool strictly_inside(const Polygon& poly, const Point& p) {
+  if (side_of(poly.outer, p) != CGAL::ON_BOUNDED_SIDE) return false;
+  for (const Ring& h : poly.holes)
+    if (side_of(h, p) != CGAL::ON_UNBOUNDED_SIDE) return false;
+  return true;
+}
+
+// Exact: in the closed polygon.
+bool inside_or_on(const Polygon& poly, const Point& p) {
+  if (side_of(poly.outer, p) == CGAL::ON_UNBOUNDED_SIDE) return false;
+  for (const Ring& h : poly.holes)
+    if (side_of(h, p) == CGAL::ON_BOUNDED_SIDE) return false;
+  return true;
+}
+
+// Moves rounded vertices of the output onto the closed free space (see the file comment). The
+// candidates are the points a few ulps away, nearest first; a candidate must keep every incident
+// cell counter-clockwise, so the mesh stays a valid triangulation.
+class Nudger {
+ public:
+  Nudger(const std::vector<Polygon>& region, const std::vector<const Polygon*>& obstacles,
+         FreeSpaceTriangulation& out)
+      : region_(region), obstacles_(obstacles), out_(out) {
+    std::vector<Box2> boxes;
+    boxes.reserve(obstacles.size());
+    for (const Polygon* p : obstacles) boxes.push_back(bounds(*p));
+    grid_ = BoxGrid(boxes, 1.0);
+  }
+
+  void run() {
+    std::vector<std::size_t> bad;
+    for (std::size_t v = 0; v < out_.vertices.size(); ++v)
+      if (!acceptable(to_point(out_.vertices[v]))) bad.push_back(v);
+    if (bad.empty()) return;
+    std::vector<std::vector<std::uint32_t>> incident(out_.vertices.size());
+    std::vector<char> wanted(out_.vertices.size(), 0);
+    for (std::size_t v : bad) wanted[v] = 1;
+    for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+      for (std::uint32_t v : out_.triangles[t])
+        if (wanted[v]) incident[v].push_back(std::uint32_t(t));
+    for (std::size_t v : bad) {
+      if (nudge(v, incident[v]))
+        ++out_.nudged_vertices;
+      else
+        ++out_.unresolved_vertices;
+    }
+  }
+
+ private:
+  bool acceptable(const Point& p) const {
+    for (std::uint32_t i : grid_.at({p.x(), p.y()}))
+      if (strictly_inside(*obstacles_[i], p)) return false;
+    for (const Polygon& r : region_)
+      if (inside_or_on(r, p)) return true;
+    return false;
+  }
+
+  bool keeps_orientation(std::size_t v, const Point& p,
+                         const std::vector<std::uint32_t>& incident) const {
+    for (std::uint32_t t : incident) {
+      std::array<Point, 3> c;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t w = out_.triangles[t][std::size_t(k)];
+        c[std::size_t(k)] = w == v ? p : to_point(out_.vertices[w]);
+      }
+      if (CGAL::orientation(c[0], c[1], c[2]) != CGAL::LEFT_TURN) return false;
+    }
+    return true;
+  }
+
+  static double step(double x, int n) {
+    const double dir = n < 0 ? -INFINITY : INFINITY;
+    for (int i = 0; i < std::abs(n); ++i) x = std::nextafter(x, dir);
+    return x;
+  }
+
+  bool nudge(std::size_t v, const std::vector<std::uint32_t>& incident) {
+    const Vec2 p = out_.vertices[v];
+    constexpr int kMaxUlps = 64;
+    for (int r = 1; r <= kMaxUlps; ++r)
+      for (int i = -r; i <= r; ++i)
+        for (int j = -r; j <= r; ++j) {
+          if (std::max(std::abs(i), std::abs(j)) != r) continue;
+          const Point q(step(p.x, i), step(p.y, j));
+          if (acceptable(q) && keeps_orientation(v, q, incident)) {
+            out_.vertices[v] = {q.x(), q.y()};
+            return true;
+          }
+        }
+    return false;
+  }
+
+  const std::vector<Polygon>& region_;
+  const std::vector<const Polygon*>& obstacles_;
+  FreeSpaceTriangulation& out_;
+  BoxGrid grid_;
+};
+
+std::vector<Point> ring_points(const Ring& r) {
+  std::vector<Point> pts;
+  pts.reserve(r.size());
+  for (Vec2 v : r) pts.push_back(to_point(v));
+  return pts;
+}
+
+// Any orientation is accepted: a ring counts +1 inside when it is an outer ring, -1 inside when
+// it is a hole, whichever way it runs.
+void insert_polygon(Cdtp& cdt, const Polygon& poly, Kind kind, std::vector<RingConstraint>& out) {
+  auto insert_ring = [&](const Ring& r, bool hole) {
+    const std::vector<Point> pts = ring_points(r);
+    const Cdtp::Constraint_id id = cdt.insert_constraint(pts.begin(), pts.end(), /*close=*/true);
+    const bool ccw = signed_area2(r) > 0;
+    if (id != Cdtp::Constraint_id(nullptr)) out.push_back({id, kind, ccw != hole ? 1 : -1});
+  };
+  insert_ring(poly.outer, false);
+  for (const Ring& h : poly.holes) insert_ring(h, true);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Thesis 5.3 triangulates free space as it is; real footprints add slivers of it between nearly
+// coincident walls of neighbouring buildings (digitizing noise, 0.1 mm wide in the Helsinki
+// data). Delaunay refinement fills a sliver with well-shaped triangles as small as its width:
+// tens of thousands of useless cells. A face of the unrefined triangulation is such a sliver when
+// it is thinner than `narrow_gap` and runs along a wall (one of its two long edges is
+// constrained); its area is reported, not silently dropped.
+bool is_sliver(Face_handle f, double narrow_gap) {
+  std::array<double, 3> len{};
+  std::array<Point, 3> p;
+  for (int k = 0; k < 3; ++k) p[std::size_t(k)] = f->vertex(k)->point();
+  for (int k = 0; k < 3; ++k)
+    len[std::size_t(k)] = std::sqrt(
+        CGAL::squared_distance(p[std::size_t(Cdtp::ccw(k))], p[std::size_t(Cdtp::cw(k))]));
+  const int shortest = int(std::min_element(len.begin(), len.end()) - len.begin());
+  const double longest = *std::max_element(len.begin(), len.end());
+  const double area2 = std::abs(CGAL::area(p[0], p[1], p[2])) * 2;
+  if (!(area2 < narrow_gap * longest)) return false;
+  for (int k = 0; k < 3; ++k)
+    if (k != shortest && f->is_constrained(k)) return true;
+  return false;
+}
+
+double triangle_area(const Face_handle f) {
+  return std::abs(CGAL::to_double(
+      CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point())));
+}
+
+}  // namespace
+
+FreeSpaceTriangulation triangulate_free_space(const std::vector<Polygon>& region,
+                                              const std::vector<const Polygon*>& obstacles,
+                                              double max_edge, double shape_bound,
+                                              double narrow_gap) {
+  FreeSpaceTriangulation out;
+  auto t0 = std::chrono::steady_clock::now();
+  Box2 region_box;
+  for (const Polygon& r : region) region_box.extend(bounds(r));
+
+  // Pass 1: the arrangement of all rings, classified by winding numbers.
+  std::vector<const Polygon*> used;  // obstacles that can touch the region
+  std::vector<std::pair<Point, Point>> boundary;
+  {
+    Cdtp all;
+    std::vector<RingConstraint> rings;
+    for (const Polygon& r : region) insert_polygon(all, r, kRegion, rings);
+    for (const Polygon* p : obstacles)
+      if (bounds(*p).overlaps(region_box)) {
+        insert_polygon(all, *p, kObstacle, rings);
+        used.push_back(p);
+      }
+    out.constraint_vertices = all.number_of_vertices();
+    classify(all, rings);
+    for (Face_handle f : all.finite_face_handles()) {
+      f->set_in_domain(is_free(all, f));
+      if (f->is_in_domain() && narrow_gap > 0 && is_sliver(f, narrow_gap)) {
+        f->set_in_domain(false);
+        out.sliver_area += triangle_area(f);
+        ++out.sliver_faces;
+      }
+    }
+    all.infinite_face()->set_in_domain(false);
+    // Only the boundary of the domain is kept: shared walls, overlaps and sliver edges inside
+    // buildings would otherwise be refined too (the mesher splits every encroached constraint).
+    for (Face_handle f : all.finite_face_handles())
+      if (f->is_in_domain())
+        for (int i = 0; i < 3; ++i)
+          if (!f->neighbor(i)->is_in_domain())  // f lies left of ccw(i) -> cw(i)
+            boundary.emplace_back(f->vertex(Cdtp::ccw(i))->point(),
+                                  f->vertex(Cdtp::cw(i))->point());
+  }
+
+  // Pass 2: the domain's boundary alone, each edge with the domain on its left.
+  Cdtp cdt;
+  std::vector<RingConstraint> rings;
+  rings.reserve(boundary.size());
+  for (const auto& [a, b] : boundary)
+    if (const Cdtp::Constraint_id id = cdt.insert_constraint(a, b);
+        id != Cdtp::Constraint_id(nullptr))
+      rings.push_back({id, kRegion});
+  classify(cdt, rings);
+  out.seconds_cdt = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  for (Face_handle f : cdt.all_face_handles()) f->set_in_domain(is_free(cdt, f));
+  Mesher mesher(cdt, Criteria(shape_bound, max_edge));
+  mesher.init(/*domain_specified=*/true);
+  mesher.refine_mesh();
+  // The mesher split constrained edges; the hierarchy followed, so classify again from scratch
+  // rather than trusting the mesher's own marks.
+  classify(cdt, rings);
+  for (Vertex_handle v : cdt.finite_vertex_handles()) v->info() = -1;
+  for (Face_handle f : cdt.finite_face_handles()) {
+    if (!is_free(cdt, f)) continue;
+    f->info().index = std::int32_t(out.triangles.size());
+    std::array<std::uint32_t, 3> tri{};
+    for (int k = 0; k < 3; ++k) {
+      const Vertex_handle v = f->vertex(k);
+      if (v->info() < 0) {
+        v->info() = std::int32_t(out.vertices.size());
+        out.vertices.push_back({v->point().x(), v->point().y()});
+      }
+      tri[std::size_t(k)] = std::uint32_t(v->info());
+    }
+    out.triangles.push_back(tri);
+  }
+  out.neighbours.reserve(out.triangles.size());
+  for (Face_handle f : cdt.finite_face_handles()) {
+    if (f->info().index < 0) continue;
+    std::array<std::int32_t, 3> nb{};
+    for (int k = 0; k < 3; ++k) nb[std::size_t(k)] = f->neighbor(k)->info().index;
+    out.neighbours.push_back(nb);
+  }
+  Nudger(region, used, out).run();
+  out.seconds_refine = seconds_since(t0);
+  return out;
+}
+
+}  // namespace urbanpvs::geometry::detail

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// urbanpvs-cells: subdivides a city's free space into view cells (thesis 5.3) and reports what
+// came out: cell count, free area, edge lengths, angles, samples, time; optionally an SVG map of
+// the cells over the footprints.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "urbanpvs/geometry/CityReader.hpp"
+#include "urbanpvs/geometry/InputError.hpp"
+#include "urbanpvs/geometry/SvgMap.hpp"
+#include "urbanpvs/geometry/ViewCellRegion.hpp"
+#include "urbanpvs/geometry/ViewCells.hpp"
+
+namespace {
+
+using namespace urbanpvs::geometry;
+
+constexpr int kExitUsage = 2;
+constexpr int kExitProcessing = 4;
+constexpr int kExitOutput = 5;
+
+// "MIN:MAX" in metres.
+bool parse_band(const std::string& s, double& lo, double& hi) {
+  const auto colon = s.find(':');
+  if (colon == std::string::npos) return false;
+  try {
+    std::size_t n1 = 0, n2 = 0;
+    lo = std::stod(s.substr(0, colon), &n1);
+    hi = std::stod(s.substr(colon + 1), &n2);
+    return n1 == colon && n2 == s.size() - colon - 1;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+void print_summary(const ViewCellMesh& m, double read_seconds) {
+  double lmin = 1e300, lmax = 0, lsum = 0, amin = 180;
+  std::size_t below = 0, samples = 0;
+  for (const CellEdge& e : m.edges) {
+    const Vec2 d = m.vertices[e.vertex[1]] - m.vertices[e.vertex[0]];
+    const double l = std::hypot(d.x, d.y);
+    lmin = std::min(lmin, l), lmax = std::max(lmax, l), lsum += l;
+  }
+  for (const ViewCell& c : m.cells) {
+    const double a = min_angle_deg(c.corner);
+    amin = std::min(amin, a);
+    below += a < kMinCellAngleDeg;
+    // The corners are shared by two of the cell's edges.
+    for (std::uint32_t e : c.edge) samples += m.edges[e].sample_count - 1;
+  }
+  const double n = double(std::max<std::size_t>(1, m.cells.size()));
+  const ViewCellOptions& o = m.options;
+  std::printf("options:     max cell edge %.2f m, eye band %.2f..%.2f m, epsilon %.2f m\n",
+              o.max_cell_edge, o.eye_min, o.eye_max, o.epsilon);
+  std::printf("cells:       %zu (%zu vertices, %zu edges; %zu footprints subtracted)\n",
+              m.cells.size(), m.vertices.size(), m.edges.size(), m.stats.footprints);
+  std::printf("free space:  %.1f m2 in %.1f m x %.1f m\n", m.free_area,
+              m.bounds.max.x - m.bounds.min.x, m.bounds.max.y - m.bounds.min.y);
+  std::printf("edges:       min %.3f, mean %.3f, max %.3f m\n", lmin,
+              lsum / double(std::max<std::size_t>(1, m.edges.size())), lmax);
+  std::printf("angles:      min %.2f deg; %zu cells below %.1f deg (sharp input corners)\n", amin,
+              below, kMinCellAngleDeg);
+  std::printf("samples:     %zu in all, %.1f per cell\n", m.samples.size(), double(samples) / n);
+  const char* ground = m.stats.ground == ViewCellStats::Ground::Terrain     ? "terrain"
+                       : m.stats.ground == ViewCellStats::Ground::Buildings ? "building grounds"
+                                                                            : "zero";
+  std::printf("ground:      from %s; %zu rounded points moved off buildings\n", ground,
+              m.stats.nudged_vertices);
+  std::printf("slivers:     %zu left out (thinner than %.3f m along a wall), %.4f m2\n",
+              m.stats.sliver_faces, o.narrow_gap, m.stats.sliver_area);
+  std::printf("time:        read %.3f s, triangulate %.3f s, refine %.3f s, total %.3f s\n",
+              read_seconds, m.stats.seconds_triangulation, m.stats.seconds_refinement,
+              m.stats.seconds_total);
+}
+
+std::string svg_of(const City& city, const ViewCellMesh& m) {
+  SvgMap map(m.bounds.grown(5));
+  for (const CityObject& o : city.objects)
+    for (const Polygon& p : o.footprint) map.polygon(p, "fill:#bbb;stroke:none");
+  for (const ViewCell& c : m.cells)
+    map.triangle(c.corner[0], c.corner[1], c.corner[2], "fill:none;stroke:#036;stroke-width:0.2");
+  return map.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Subdivides a city's free space into view cells (constrained Delaunay "
+      "triangulation, thesis 5.3) and reports them."};
+  std::vector<std::string> files;
+  ReadOptions read;
+  ViewCellOptions options;
+  double default_height = 0;
+  std::string band, region, svg;
+  app.add_option("files", files, "City files")->required()->check(CLI::ExistingFile);
+  app.add_option("--max-cell-edge", options.max_cell_edge, "Longest cell edge in m")
+      ->capture_default_str();
+  app.add_option("--eye-band", band, "Eye band above the ground in m, MIN:MAX (default 0:2)");
+  app.add_option("--margin", options.margin, "Margin around the buildings in m")
+      ->capture_default_str();
+  app.add_option("--epsilon", options.epsilon, "Sample spacing on top edges: 2*epsilon, in m")
+      ->capture_default_str();
+  app.add_option("--narrow-gap", options.narrow_gap,
+                 "Leave out slivers of free space thinner than this along walls (m; 0: none)")
+      ->capture_default_str();
+  app.add_option("--region", region, "GeoJSON Polygon/MultiPolygon to subdivide (city's CRS)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--default-height", default_height,
+                 "Height in m for GeoJSON buildings without height attributes");
+  app.add_option("--svg", svg, "Write a map of the cells over the footprints");
+  try {
+    app.parse(argc, argv);
+    if (!band.empty() && !parse_band(band, options.eye_min, options.eye_max))
+      throw CLI::ValidationError("--eye-band", "expects MIN:MAX in metres, got " + band);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitUsage;
+  }
+  if (default_height > 0) read.default_height = default_height;
+  try {
+    validate(options);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());
+    return kExitUsage;
+  }
+
+  ViewCellMesh mesh;
+  City city;
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    city = read_city(files, read);
+    if (!region.empty()) options.region = read_region_file(region, city.frame);
+    const double read_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    mesh = build_view_cells(city, options);
+    print_summary(mesh, read_seconds);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());
+    return exit_code(e.problem());
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());
+    return kExitProcessing;
+  }
+  if (!svg.empty()) {
+    try {
+      write_file_atomically(svg, svg_of(city, mesh));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());
+      return kExitOutput;
+    }
+  }
+  return 0;
+}

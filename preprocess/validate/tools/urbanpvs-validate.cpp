@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// urbanpvs-validate CITY... PVS: an independent ground truth for a PVS file (see Validator.hpp).
+// Exit 0: no miss; 1: misses found (listed); 2: usage; 10-17: input errors; 4: the file does not
+// belong to the city or cannot be read.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "urbanpvs/geometry/CityReader.hpp"
+#include "urbanpvs/geometry/InputError.hpp"
+#include "urbanpvs/validate/Validator.hpp"
+
+int main(int argc, char** argv) {
+  using namespace urbanpvs;
+  CLI::App app{"Checks a PVS file against ray casting in the real city: every object seen from a "
+               "random viewpoint of a cell but missing from its PVS is a miss."};
+  std::vector<std::string> inputs;
+  double default_height = 0;
+  validate::ValidationOptions options;
+  app.add_option("inputs", inputs, "City files, then the PVS file")->required()->expected(2, -1);
+  app.add_option("--default-height", default_height, "As given to the preprocessor (m)");
+  app.add_option("--viewpoints", options.viewpoints, "Random viewpoints checked")->capture_default_str();
+  app.add_option("--tightness-viewpoints", options.tightness_viewpoints,
+                 "Viewpoints that also count the objects seen")->capture_default_str();
+  app.add_option("--seed", options.seed, "Random seed")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  const std::string pvs_path = inputs.back();
+  inputs.pop_back();
+  geometry::ReadOptions read;
+  if (default_height > 0) read.default_height = default_height;
+  try {
+    const geometry::City city = geometry::read_city(inputs, read);
+    runtime::PvsFile file;
+    runtime::LoadError error;
+    if (runtime::PvsFile::open_file(pvs_path.c_str(), file, {}, &error) != runtime::Status::kOk) {
+      std::fprintf(stderr, "urbanpvs-validate: %s: cannot load: %s\n", pvs_path.c_str(),
+                   error.detail);
+      return 4;
+    }
+    const validate::ValidationReport r = validate::validate(city, file, options);
+    std::printf("viewpoints: %zu, rays: %zu, misses: %zu\n", r.viewpoints, r.rays, r.misses.size());
+    std::printf("tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
+                r.tightness(), double(r.pvs_total) / double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
+                double(r.seen_total) / double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
+                std::min(r.viewpoints, options.tightness_viewpoints));
+    for (std::size_t i = 0; i < r.misses.size() && i < 20; ++i) {
+      const validate::Miss& m = r.misses[i];
+      std::printf("MISS cell %u viewpoint (%.3f, %.3f, %.3f) sees %s at (%.3f, %.3f, %.3f)\n",
+                  m.cell, m.viewpoint.x, m.viewpoint.y, m.viewpoint.z, m.object_id.c_str(),
+                  m.target.x, m.target.y, m.target.z);
+    }
+    return r.misses.empty() ? 0 : 1;
+  } catch (const geometry::InputError& e) {
+    std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
+    return geometry::exit_code(e.problem());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "urbanpvs-validate: %s: %s\n", pvs_path.c_str(), e.what());
+    return 4;
+  }
+}
