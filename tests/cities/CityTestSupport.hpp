@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "urbanpvs/cities/city_generator.hpp"
@@ -25,15 +26,18 @@ inline const City& city(double km2, std::uint64_t seed, RoofMode roofs) {
     RoofMode roofs;
     City city;
   };
-  static std::vector<Entry*> cache;
-  for (Entry* e : cache) {
+  // unique_ptr: references handed out stay valid as the cache grows, and the cities are freed at
+  // exit (LeakSanitizer runs in the sanitizer test configuration).
+  static std::vector<std::unique_ptr<Entry>> cache;
+  for (const auto& e : cache) {
     if (e->km2 == km2 && e->seed == seed && e->roofs == roofs) return e->city;
   }
   CityParams p;
   p.size_km2 = km2;
   p.seed = seed;
   p.roofs = roofs;
-  cache.push_back(new Entry{km2, seed, roofs, urbanpvs::cities::generateCity(p)});
+  cache.push_back(
+      std::make_unique<Entry>(Entry{km2, seed, roofs, urbanpvs::cities::generateCity(p)}));
   return cache.back()->city;
 }
 
