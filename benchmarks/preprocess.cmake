@@ -2,3 +2,14 @@
 add_executable(cull_map_benchmark ${CMAKE_CURRENT_LIST_DIR}/cull_map_benchmark.cpp)
 target_link_libraries(cull_map_benchmark PRIVATE urbanpvs::preprocess urbanpvs::cities
                       benchmark::benchmark urbanpvs_warnings)
+
+# Brute force against the hierarchical test (issue 5): cells/s, PVS comparison, counters.
+add_executable(hierarchical_benchmark ${CMAKE_CURRENT_LIST_DIR}/hierarchical_benchmark.cpp)
+target_link_libraries(hierarchical_benchmark PRIVATE urbanpvs::preprocess urbanpvs::cities
+                      urbanpvs_warnings)
+
+# The whole urbanpvs-preprocess run on generated 1, 4 and 8 km² cities (issue 7): cells/s, peak
+# memory, bytes per cell. A plain program: preprocess_benchmark [--sizes 1,4,8] [--threads N].
+add_executable(preprocess_benchmark ${CMAKE_CURRENT_LIST_DIR}/preprocess_benchmark.cpp)
+target_link_libraries(preprocess_benchmark PRIVATE urbanpvs::bake urbanpvs::cities
+                      nlohmann_json::nlohmann_json CLI11::CLI11 urbanpvs_warnings)

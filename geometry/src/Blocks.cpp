@@ -103,21 +103,22 @@ Block build_block(std::vector<const Prism*> members, const BlockOptions& options
   Block block;
   std::sort(members.begin(), members.end(),
             [](const Prism* a, const Prism* b) { return a->top > b->top; });
-  // Levels from the top down: each level's union grows by the prisms that reach it, so the
-  // union computed for one level is carried into the next instead of starting over.
-  std::vector<Polygon> grown_union;
+  // Levels from the top down: each level is the union of every prism that reaches it. The union
+  // always starts from the grown footprints themselves: feeding a previous union back in would
+  // feed CGAL rings rounded to doubles (and pulled apart where they touch), which can be
+  // slightly self-intersecting, a precondition CGAL's join does not check (it crashed on a
+  // generated 1 km² city).
+  std::vector<Polygon> pieces;
   std::vector<BlockLevel> descending;
   for (std::size_t i = 0; i < members.size();) {
     const double level = quantised(members[i]->top, options.height_step);
-    std::vector<Polygon> pieces = std::move(grown_union);
     for (; i < members.size() && quantised(members[i]->top, options.height_step) == level; ++i) {
       block.objects.push_back(members[i]->object);
       block.bounds.extend(members[i]->box);
       for (Polygon& g : grow_polygon(*members[i]->footprint, 0.5 * options.gap_tolerance))
         pieces.push_back(std::move(g));
     }
-    grown_union = union_polygons(pieces);
-    descending.push_back({level, grown_union, 0.5 * options.gap_tolerance});
+    descending.push_back({level, union_polygons(pieces), 0.5 * options.gap_tolerance});
   }
   std::sort(block.objects.begin(), block.objects.end());
   block.objects.erase(std::unique(block.objects.begin(), block.objects.end()), block.objects.end());

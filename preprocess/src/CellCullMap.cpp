@@ -4,29 +4,73 @@
 #include <algorithm>
 
 #include "urbanpvs/preprocess/CpuRasterizer.hpp"
+#include "urbanpvs/preprocess/ObjectTest.hpp"
 
 namespace urbanpvs::preprocess {
 
-void render_sample(const Vec3& sample, std::span<const geometry::Occluder> occluders, CullMap& map,
-                   CullMapStats* stats) {
+void render_sample(const Vec3& sample, std::span<const geometry::Occluder* const> occluders,
+                   CullMap& map, CullMapStats* stats) {
   const Box2 clip = map.grid().bounds().grown(map.grid().pixel);
-  for (const geometry::Occluder& o : occluders)
-    geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
-      const auto shadow = occluder_shadow(sample, a, b, o.top_z, clip);
+  for (const geometry::Occluder* o : occluders)
+    geometry::for_each_edge(o->shape, [&](Vec2 a, Vec2 b) {
+      auto shadow = occluder_shadow(sample, a, b, o->top_z, clip);
+      if (shadow && map.grid().whole_pixel) shadow = whole_pixel_part(*shadow, map.grid().pixel);
       if (!shadow) return;
       const std::size_t px = rasterize_max(*shadow, map);
       if (stats) ++stats->shadows, stats->pixels_written += px;
     });
 }
 
+std::vector<const geometry::Occluder*> pointers_to(std::span<const geometry::Occluder> occluders) {
+  std::vector<const geometry::Occluder*> out;
+  out.reserve(occluders.size());
+  for (const geometry::Occluder& o : occluders) out.push_back(&o);
+  return out;
+}
+
 CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
                       std::span<const geometry::Occluder> occluders, CullMapStats* stats) {
+  return cell_cull_map(grid, samples, pointers_to(occluders), stats);
+}
+
+void render_sample_front_to_back(const Vec3& sample,
+                                 std::span<const geometry::Occluder* const> occluders, CullMap& map,
+                                 CullMapStats* stats) {
+  auto distance2 = [&](const geometry::Occluder* o) {
+    const double dx = std::max({0.0, o->bounds.min.x - sample.x, sample.x - o->bounds.max.x});
+    const double dy = std::max({0.0, o->bounds.min.y - sample.y, sample.y - o->bounds.max.y});
+    return dx * dx + dy * dy;
+  };
+  std::vector<std::pair<double, const geometry::Occluder*>> order;
+  order.reserve(occluders.size());
+  for (const geometry::Occluder* o : occluders) order.emplace_back(distance2(o), o);
+  // Ties broken by the pointer (the scene's occluder order): deterministic.
+  std::sort(order.begin(), order.end());
+  const double margin = map.grid().pixel;
+  for (const auto& [d2, o] : order) {
+    geometry::Box3 box;
+    box.xy = o->bounds.grown(margin);
+    box.zmin = box.zmax = o->top_z;
+    if (hidden_by(map, box)) {
+      if (stats) ++stats->occluders_skipped;
+      continue;
+    }
+    render_sample(sample, std::span<const geometry::Occluder* const>(&o, 1), map, stats);
+  }
+}
+
+CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
+                      std::span<const geometry::Occluder* const> occluders, CullMapStats* stats,
+                      bool front_to_back) {
   CullMap cell(grid);
   if (samples.empty()) return cell;
   CullMap one(grid);
   for (std::size_t s = 0; s < samples.size(); ++s) {
     one.fill(CullMap::kNothingHidden);
-    render_sample(samples[s], occluders, one, stats);
+    if (front_to_back)
+      render_sample_front_to_back(samples[s], occluders, one, stats);
+    else
+      render_sample(samples[s], occluders, one, stats);
     if (s == 0) {
       cell.values() = one.values();
     } else {

@@ -29,10 +29,14 @@ std::vector<Vec2> clip_to_box(std::vector<Vec2> poly, const Box2& box) {
   auto at_y = [](double y) {
     return [y](Vec2 p, Vec2 q) { return Vec2{p.x + (q.x - p.x) * (y - p.y) / (q.y - p.y), y}; };
   };
-  poly = clip_half_plane(poly, [&](Vec2 p) { return p.x >= box.min.x; }, at_x(box.min.x));
-  poly = clip_half_plane(poly, [&](Vec2 p) { return p.x <= box.max.x; }, at_x(box.max.x));
-  poly = clip_half_plane(poly, [&](Vec2 p) { return p.y >= box.min.y; }, at_y(box.min.y));
-  poly = clip_half_plane(poly, [&](Vec2 p) { return p.y <= box.max.y; }, at_y(box.max.y));
+  poly = clip_half_plane(
+      poly, [&](Vec2 p) { return p.x >= box.min.x; }, at_x(box.min.x));
+  poly = clip_half_plane(
+      poly, [&](Vec2 p) { return p.x <= box.max.x; }, at_x(box.max.x));
+  poly = clip_half_plane(
+      poly, [&](Vec2 p) { return p.y >= box.min.y; }, at_y(box.min.y));
+  poly = clip_half_plane(
+      poly, [&](Vec2 p) { return p.y <= box.max.y; }, at_y(box.max.y));
   return poly;
 }
 
@@ -51,17 +55,55 @@ std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b
   s.b = -ny / nz;
   s.c = top + (nx * a.x + ny * a.y) / nz;
 
-  // The wedge behind the edge, long enough that its far side lies beyond the clip box.
+  // The wedge behind the edge out to radius R beyond every corner of the clip box. Its far side
+  // must not be the chord between the rays through a and b: seen at a grazing angle (a street
+  // seen along its walls) the wedge opens to nearly 180° and that chord passes close to the
+  // sample, cutting off most of the shadow. Two tangent segments per half-angle (each < 90°,
+  // so 1/cos <= √2) bound the circular arc of radius R instead.
   double reach = 0;
-  for (Vec2 corner : {clip.min, clip.max, Vec2{clip.min.x, clip.max.y}, Vec2{clip.max.x, clip.min.y}})
+  for (Vec2 corner :
+       {clip.min, clip.max, Vec2{clip.min.x, clip.max.y}, Vec2{clip.max.x, clip.min.y}})
     reach = std::max(reach, std::hypot(corner.x - v.x, corner.y - v.y));
-  const Vec2 va = a - v, vb = b - v;
-  const double near = std::min(std::hypot(va.x, va.y), std::hypot(vb.x, vb.y));
-  const double stretch = 2 * reach / near + 1;
-  std::vector<Vec2> wedge{a, a + stretch * va, b + stretch * vb, b};
+  reach = std::max({reach, std::hypot(a.x - v.x, a.y - v.y), std::hypot(b.x - v.x, b.y - v.y)});
+  const double R = 1.01 * reach + 1;
+  auto unit = [](Vec2 p) { return (1 / std::hypot(p.x, p.y)) * p; };
+  const Vec2 ua = unit(a - v), ub = unit(b - v), um = unit(ua + ub);
+  const Vec2 ta = unit(ua + um), tb = unit(um + ub);
+  const double cos_quarter = std::hypot(ua.x + um.x, ua.y + um.y) / 2;  // cos(θ/4) >= √2/2
+  std::vector<Vec2> wedge{
+      a, v + R * ua, v + (R / cos_quarter) * ta, v + (R / cos_quarter) * tb, v + R * ub, b};
   if (geometry::signed_area2(wedge) < 0) std::reverse(wedge.begin(), wedge.end());
   s.polygon = clip_to_box(std::move(wedge), clip);
   if (s.polygon.size() < 3) return std::nullopt;
+  return s;
+}
+
+std::optional<OccluderShadow> whole_pixel_part(const OccluderShadow& shadow, double pixel,
+                                               double slack) {
+  // A square of half-side h lies in the half-plane left of p→q (unit left normal n) iff its
+  // centre lies at least h·(|n.x| + |n.y|) inside: erode each edge by that, by clipping.
+  const double h = pixel * (0.5 + slack);
+  const std::vector<Vec2>& poly = shadow.polygon;
+  std::vector<Vec2> out = poly;
+  for (std::size_t i = 0; i < poly.size() && out.size() >= 3; ++i) {
+    const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
+    const Vec2 d = q - p;
+    const double len = std::hypot(d.x, d.y);
+    if (!(len > 0)) continue;
+    const Vec2 n{-d.y / len, d.x / len};
+    const double inset = h * (std::abs(n.x) + std::abs(n.y));
+    auto depth = [&](Vec2 v) { return n.x * (v.x - p.x) + n.y * (v.y - p.y) - inset; };
+    out = clip_half_plane(
+        out, [&](Vec2 v) { return depth(v) >= 0; },
+        [&](Vec2 u, Vec2 v) {
+          const double du = depth(u), dv = depth(v);
+          return u + (du / (du - dv)) * (v - u);
+        });
+  }
+  if (out.size() < 3 || !(geometry::signed_area2(out) > 0)) return std::nullopt;
+  OccluderShadow s = shadow;
+  s.polygon = std::move(out);
+  s.c -= 0.5 * pixel * (std::abs(s.a) + std::abs(s.b));
   return s;
 }
 

@@ -116,7 +116,7 @@ OsMesaCullMapRenderer::~OsMesaCullMapRenderer() {
 }
 
 CullMap OsMesaCullMapRenderer::cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
-                                             std::span<const geometry::Occluder> occluders,
+                                             std::span<const geometry::Occluder* const> occluders,
                                              double zlo, double zhi, CullMapStats* stats) {
   Context& c = *gl_;
   OSMesaMakeCurrent(c.context, c.window.data(), GL_UNSIGNED_BYTE, 4, 4);
@@ -134,9 +134,11 @@ CullMap OsMesaCullMapRenderer::cell_cull_map(const CullMapGrid& grid, std::span<
   std::vector<float> triangles;
   auto build = [&](const Vec3& sample) {
     triangles.clear();
-    for (const geometry::Occluder& o : occluders)
-      geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
-        const auto s = occluder_shadow(sample, a, b, o.top_z, clip);
+    for (const geometry::Occluder* o : occluders)
+      geometry::for_each_edge(o->shape, [&](Vec2 a, Vec2 b) {
+        auto s = occluder_shadow(sample, a, b, o->top_z, clip);
+        // llvmpipe snaps vertices to 1/256 pixel: erode by that much more (1/128 for margin).
+        if (s && grid.whole_pixel) s = whole_pixel_part(*s, grid.pixel, 1.0 / 128);
         if (!s) return;
         if (stats) ++stats->shadows;
         // depth(i + 0.5, j + 0.5) = (height(origin + k·(i + 0.5, j + 0.5)) - zlo) / range

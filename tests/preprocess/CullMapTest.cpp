@@ -77,7 +77,7 @@ TEST(CullMap, CpuRasterizerMatchesBruteForce) {
     while (inside_any(occ, {v.x, v.y})) v = {pos(rng), pos(rng), eye(rng)};
     const CullMapGrid grid = CullMapGrid::covering({{-10, -10}, {210, 210}}, 1.3);
     CullMap map(grid);
-    render_sample(v, occ, map);
+    render_sample(v, pointers_to(occ), map);
     for (int j = 0; j < grid.height; ++j)
       for (int i = 0; i < grid.width; ++i) {
         const Reference r = reference_height(v, occ, grid.center(i, j));

@@ -17,18 +17,34 @@
 namespace urbanpvs::preprocess {
 
 struct CullMapStats {
-  std::size_t shadows = 0;         ///< shadow polygons rasterized
-  std::size_t pixels_written = 0;  ///< pixel centres covered, summed over shadows
+  std::size_t shadows = 0;            ///< shadow polygons rasterized
+  std::size_t pixels_written = 0;     ///< pixel centres covered, summed over shadows
+  std::size_t occluders_skipped = 0;  ///< hidden from a sample (front-to-back only)
 };
 
 /// Writes the max over all occluder shadows seen from `sample` into `map` (which the caller
 /// fills with CullMap::kNothingHidden first). Shadows are clipped one pixel beyond the map.
-void render_sample(const Vec3& sample, std::span<const geometry::Occluder> occluders, CullMap& map,
-                   CullMapStats* stats = nullptr);
+void render_sample(const Vec3& sample, std::span<const geometry::Occluder* const> occluders,
+                   CullMap& map, CullMapStats* stats = nullptr);
+
+/// The same, nearest occluders first, skipping every occluder already hidden in the map built so
+/// far (its box, one pixel larger, under the map everywhere). Skipping an occluder can only
+/// lower the map, so this stays conservative; it renders far fewer shadows in a city, where
+/// the first row of buildings hides most of the rest (thesis 5.6.1, per sample).
+void render_sample_front_to_back(const Vec3& sample,
+                                 std::span<const geometry::Occluder* const> occluders, CullMap& map,
+                                 CullMapStats* stats = nullptr);
 
 /// The merged cull map of a cell from its samples (min over samples of the per-sample max).
 /// No samples: nothing is hidden.
 CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
+                      std::span<const geometry::Occluder* const> occluders,
+                      CullMapStats* stats = nullptr, bool front_to_back = false);
+/// The same over every occluder of a list.
+CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
                       std::span<const geometry::Occluder> occluders, CullMapStats* stats = nullptr);
+
+/// Pointers to every element of `occluders` (the form the functions above take).
+std::vector<const geometry::Occluder*> pointers_to(std::span<const geometry::Occluder> occluders);
 
 }  // namespace urbanpvs::preprocess

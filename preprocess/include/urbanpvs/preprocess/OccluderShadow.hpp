@@ -19,7 +19,7 @@ struct Vec3 {
 };
 
 struct OccluderShadow {
-  std::vector<Vec2> polygon;  ///< convex, counter-clockwise, clipped to the requested box
+  std::vector<Vec2> polygon;   ///< convex, counter-clockwise, clipped to the requested box
   double a = 0, b = 0, c = 0;  ///< height over the ground: z = a·x + b·y + c
 
   double height(Vec2 p) const { return a * p.x + b * p.y + c; }
@@ -37,5 +37,12 @@ inline bool faces(Vec2 a, Vec2 b, const Vec3& sample) {
 /// when the edge does not face the sample or the wedge misses `clip`.
 std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b, double top,
                                               const Box2& clip);
+
+/// The part of `shadow` that holds over whole pixels of size `pixel`: the polygon eroded by the
+/// pixel's square (a pixel centre inside the result means the whole pixel lies inside the shadow)
+/// and the height lowered to its minimum over the square. `slack` (in pixels) erodes further,
+/// for rasterizers that snap vertices. Nothing when the eroded polygon is empty.
+std::optional<OccluderShadow> whole_pixel_part(const OccluderShadow& shadow, double pixel,
+                                               double slack = 0);
 
 }  // namespace urbanpvs::preprocess

@@ -28,8 +28,13 @@ class OsMesaCullMapRenderer {
   /// and every value read back is lowered by kDepthMargin·(zhi - zlo) so that it is never above
   /// the true height.
   CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
+                        std::span<const geometry::Occluder* const> occluders, double zlo,
+                        double zhi, CullMapStats* stats = nullptr);
+  CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
                         std::span<const geometry::Occluder> occluders, double zlo, double zhi,
-                        CullMapStats* stats = nullptr);
+                        CullMapStats* stats = nullptr) {
+    return cell_cull_map(grid, samples, pointers_to(occluders), zlo, zhi, stats);
+  }
 
   /// Depth read back from llvmpipe was measured within ~2e-6 of the normalized range
   /// (NOTES.md); four times that is subtracted.

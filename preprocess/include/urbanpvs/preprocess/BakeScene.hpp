@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Everything the per-cell visibility work reads, built once from the city and shared read-only
+// by every thread (thesis 5.2.4): blocks, occluders shrunk by ε, view cells with their samples,
+// the area the cull maps cover, and quadtrees of objects and occluders. Data flows one way:
+// city → blocks/occluders → view cells → (per cell) cull maps → PVS.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "urbanpvs/geometry/Blocks.hpp"
+#include "urbanpvs/geometry/Occluder.hpp"
+#include "urbanpvs/geometry/ViewCells.hpp"
+#include "urbanpvs/preprocess/CellMapRenderer.hpp"
+#include "urbanpvs/preprocess/CullMap.hpp"
+#include "urbanpvs/preprocess/SpatialIndex.hpp"
+#include "urbanpvs/runtime/pvs_writer.hpp"
+
+namespace urbanpvs::preprocess {
+
+enum class Method { Hierarchical, BruteForce };
+
+/// One settings struct for the whole bake; stored in the output (thesis 7.2 couples ε and the
+/// pixel size: CullMapSettings::validate).
+struct BakeOptions {
+  geometry::BlockOptions blocks;
+  geometry::ViewCellOptions cells;  ///< cells.epsilon is the ε of shrinking and sampling
+  double pixel = 1.39;              ///< cull-map pixel size [Units: m] [Limit: <= max_pixel(ε)]
+  Backend backend = Backend::Cpu;
+  Method method = Method::Hierarchical;
+  /// Side of the first cull map of the hierarchical test [Units: pixels] [Limit: 8 .. 65536]
+  int initial_map = 128;
+  /// Largest map side at the fine pixel size [Units: pixels] [Limit: initial_map .. 65536].
+  /// Larger maps keep this many pixels and double their pixel size instead, with whole-pixel
+  /// coverage (CullMapGrid::whole_pixel), which is conservative at any pixel size: far from the
+  /// cell the test gets coarser, not wrong. 65536 keeps the thesis's single pixel size.
+  int fine_map = 256;
+  /// Occluders are shrunk by this instead of cells.epsilon. Only for tests that must show a
+  /// broken bake is caught (urbanpvs-validate); never set it otherwise. [Units: m]
+  double shrink_override = -1;
+
+  /// Throws std::invalid_argument naming the value to change.
+  void validate() const;
+};
+
+class BakeScene {
+ public:
+  /// Throws std::invalid_argument for invalid options (geometry errors propagate).
+  BakeScene(const geometry::City& city, const BakeOptions& options);
+
+  const geometry::City& city() const { return *city_; }
+  const BakeOptions& options() const { return options_; }
+  const std::vector<geometry::Block>& blocks() const { return blocks_; }
+  const std::vector<geometry::Occluder>& occluders() const { return occluders_; }
+  const geometry::ViewCellMesh& mesh() const { return mesh_; }
+  std::size_t cell_count() const { return mesh_.cells.size(); }
+
+  /// The pixel lattice every cull map is cut from, covering the cells and every building.
+  const CullMapGrid& area() const { return area_; }
+  double zlo() const { return zlo_; }  ///< below every object
+  double zhi() const { return zhi_; }  ///< above every occluder
+  const BoxQuadtree& object_index() const { return object_index_; }
+  const BoxQuadtree& occluder_index() const { return occluder_index_; }
+
+  /// The samples of a cell: those of its three top edges (thesis 5.3).
+  std::vector<Vec3> samples(std::uint32_t cell) const;
+  /// The file record of a cell with its PVS.
+  runtime::CellRecord cell_record(std::uint32_t cell, std::vector<std::uint32_t> pvs) const;
+  /// Metadata and objects of the output file; cells are added by the caller in cell order.
+  runtime::PvsBake file_header() const;
+
+ private:
+  const geometry::City* city_;
+  BakeOptions options_;
+  std::vector<geometry::Block> blocks_;
+  std::vector<geometry::Occluder> occluders_;
+  geometry::ViewCellMesh mesh_;
+  CullMapGrid area_;
+  double zlo_ = 0, zhi_ = 0;
+  BoxQuadtree object_index_, occluder_index_;
+};
+
+}  // namespace urbanpvs::preprocess

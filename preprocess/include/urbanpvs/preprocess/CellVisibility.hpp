@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The PVS of one view cell by the hierarchical occlusion test of thesis 5.6. A small cull map
+// centred on the cell grows (×2 per side) until it covers the city or nothing outside it can be
+// seen:
+//  - values inside a map are final once every occluder that meets the map is rendered: an
+//    occluder outside a convex map around the cell casts its shadow away from the cell, never
+//    into the map; so objects inside are decided as soon as they lie inside;
+//  - occluders hidden in the current map (occluded occluders) or behind its horizon add nothing
+//    to any larger map and are dropped (thesis 5.6.1);
+//  - objects and occluders outside the map are tested against the horizon, whole quadtree nodes
+//    at once; when no undecided object remains outside, the test stops early (early break).
+// The brute-force form (one map over the city, every occluder) is kept as the reference.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "urbanpvs/preprocess/BakeScene.hpp"
+#include "urbanpvs/preprocess/CellMapRenderer.hpp"
+
+namespace urbanpvs::preprocess {
+
+/// Where the time of one cell (or, summed, of a bake) goes.
+struct CellCounters {
+  std::uint64_t cells = 0;                     ///< cells these counters sum over
+  std::uint64_t maps = 0;                      ///< cull maps rendered (steps of the growth)
+  std::uint64_t map_pixels = 0;                ///< pixels of those maps, summed
+  std::uint64_t largest_map = 0;               ///< longest side of the largest map [pixels]
+  std::uint64_t early_breaks = 0;              ///< cells that stopped before covering the city
+  std::uint64_t occluders_considered = 0;      ///< occluder tests (an occluder once per map)
+  std::uint64_t occluders_rendered = 0;        ///< occluders drawn into a map, summed over maps
+  std::uint64_t occluders_occluded = 0;        ///< dropped: hidden inside the previous map
+  std::uint64_t occluders_behind_horizon = 0;  ///< dropped: hidden behind the previous horizon
+  std::uint64_t objects_in_map = 0;            ///< objects decided by the map's heights
+  std::uint64_t objects_behind_horizon = 0;    ///< objects hidden by the horizon
+  std::uint64_t nodes_behind_horizon = 0;      ///< quadtree nodes rejected whole
+  std::uint64_t shadows = 0;                   ///< shadow polygons rasterized
+  std::uint64_t pixels_written = 0;            ///< by the CPU rasterizer
+
+  CellCounters& operator+=(const CellCounters& o);
+};
+
+/// Computes cell PVSs for one thread: owns the renderer (and its OpenGL context) and the
+/// per-cell scratch state. Not thread-safe; make one per thread. The scene must outlive it.
+class CellVisibility {
+ public:
+  explicit CellVisibility(const BakeScene& scene);
+  ~CellVisibility();
+  CellVisibility(const CellVisibility&) = delete;
+  CellVisibility& operator=(const CellVisibility&) = delete;
+
+  /// Indices of the objects not proven hidden from `cell`, ascending. Deterministic: the same
+  /// cell gives the same list whatever was computed before, on whatever thread.
+  std::vector<std::uint32_t> pvs(std::uint32_t cell, CellCounters* counters = nullptr);
+
+ private:
+  std::vector<std::uint32_t> hierarchical(std::uint32_t cell, CellCounters& counters);
+  std::vector<std::uint32_t> brute_force(std::uint32_t cell, CellCounters& counters);
+
+  const BakeScene& scene_;
+  std::unique_ptr<CellMapRenderer> renderer_;
+  // Per-cell marks, valid where the stamp equals the current cell's (no clearing per cell).
+  std::vector<std::uint32_t> object_decided_, occluder_dropped_, object_node_done_,
+      occluder_node_done_;
+  std::vector<std::uint8_t> object_visible_;
+  std::uint32_t stamp_ = 0;
+};
+
+}  // namespace urbanpvs::preprocess

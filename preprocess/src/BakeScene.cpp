@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/preprocess/BakeScene.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace urbanpvs::preprocess {
+namespace {
+
+runtime::Metadata metadata_of(const geometry::City& city, const BakeOptions& o) {
+  runtime::Metadata m;
+  m.frame.crs = city.frame.crs;
+  m.frame.geographic = city.frame.kind == geometry::LocalFrame::Kind::Geographic;
+  m.frame.geodetic_origin = {city.frame.origin_lat, city.frame.origin_lon, city.frame.origin_h};
+  m.frame.origin = city.frame.origin;
+  m.settings.epsilon_m = o.cells.epsilon;
+  m.settings.pixel_size_m = o.pixel;
+  m.settings.max_cell_edge_m = o.cells.max_cell_edge;
+  m.settings.eye_min_m = o.cells.eye_min;
+  m.settings.eye_max_m = o.cells.eye_max;
+  m.properties.push_back({"gap_tolerance_m", std::to_string(o.blocks.gap_tolerance)});
+  m.properties.push_back({"backend", o.backend == Backend::Cpu ? "cpu" : "osmesa"});
+  m.properties.push_back(
+      {"method", o.method == Method::Hierarchical ? "hierarchical" : "brute-force"});
+  m.properties.push_back({"initial_map_px", std::to_string(o.initial_map)});
+  m.properties.push_back({"fine_map_px", std::to_string(o.fine_map)});
+  return m;
+}
+
+std::vector<geometry::Box3> occluder_boxes(const std::vector<geometry::Occluder>& occluders) {
+  std::vector<geometry::Box3> out;
+  out.reserve(occluders.size());
+  for (const geometry::Occluder& o : occluders) {
+    geometry::Box3 b;
+    b.xy = o.bounds;
+    b.zmin = -std::numeric_limits<double>::infinity();  // prisms stand on the ground
+    b.zmax = o.top_z;
+    out.push_back(b);
+  }
+  return out;
+}
+
+std::vector<geometry::Box3> object_boxes(const std::vector<geometry::CityObject>& objects) {
+  std::vector<geometry::Box3> out;
+  out.reserve(objects.size());
+  for (const geometry::CityObject& o : objects) out.push_back(o.bbox);
+  return out;
+}
+
+}  // namespace
+
+void BakeOptions::validate() const {
+  CullMapSettings{cells.epsilon, pixel}.validate();
+  geometry::validate(cells);
+  if (initial_map < 8 || initial_map > 65536)
+    throw std::invalid_argument("initial cull-map size " + std::to_string(initial_map) +
+                                " pixels is outside 8 .. 65536");
+  if (fine_map < initial_map || fine_map > 65536)
+    throw std::invalid_argument("fine cull-map size " + std::to_string(fine_map) +
+                                " pixels is outside initial_map (" + std::to_string(initial_map) +
+                                ") .. 65536");
+  if (!(blocks.gap_tolerance >= 0))
+    throw std::invalid_argument("block gap tolerance must be >= 0 m");
+}
+
+BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
+    : city_(&city), options_(options) {
+  options_.validate();
+  blocks_ = geometry::build_blocks(city.objects, options_.blocks);
+  const double shrink =
+      options_.shrink_override >= 0 ? options_.shrink_override : options_.cells.epsilon;
+  occluders_ = geometry::shrink_blocks(blocks_, shrink);
+  mesh_ = geometry::build_view_cells(city, options_.cells);
+
+  // Two pixels of margin: every object's footprint and every cell lies strictly inside, so the
+  // largest map decides everything.
+  geometry::Box2 covered = mesh_.bounds;
+  covered.extend(city.bounds().xy);
+  area_ = CullMapGrid::covering(covered.grown(2 * options_.pixel), options_.pixel);
+  const geometry::Box3 all = city.bounds();
+  zlo_ = all.zmin - 1.0;
+  for (const geometry::ViewCell& c : mesh_.cells) zlo_ = std::min(zlo_, c.zmin - 1.0);
+  zhi_ = all.zmax + 1000.0;
+  object_index_ = BoxQuadtree(object_boxes(city.objects));
+  occluder_index_ = BoxQuadtree(occluder_boxes(occluders_));
+}
+
+std::vector<Vec3> BakeScene::samples(std::uint32_t cell) const {
+  std::vector<Vec3> out;
+  for (std::uint32_t e : mesh_.cells[cell].edge)
+    for (const geometry::Point3& p : mesh_.samples_of(mesh_.edges[e]))
+      out.push_back({p.x, p.y, p.z});
+  return out;
+}
+
+runtime::CellRecord BakeScene::cell_record(std::uint32_t cell,
+                                           std::vector<std::uint32_t> pvs) const {
+  const geometry::ViewCell& c = mesh_.cells[cell];
+  runtime::CellRecord rec;
+  // The runtime numbers neighbours by edge k = corner k -> k+1, the mesh by opposite corner.
+  for (int k = 0; k < 3; ++k) {
+    rec.triangle[static_cast<std::size_t>(k)] = {c.corner[static_cast<std::size_t>(k)].x,
+                                                 c.corner[static_cast<std::size_t>(k)].y};
+    const std::int32_t n = c.neighbour[static_cast<std::size_t>((k + 2) % 3)];
+    rec.neighbours[static_cast<std::size_t>(k)] =
+        n < 0 ? runtime::kNoCell : static_cast<std::uint32_t>(n);
+  }
+  rec.z_min = c.zmin;
+  rec.z_max = c.zmax;
+  rec.pvs = std::move(pvs);
+  return rec;
+}
+
+runtime::PvsBake BakeScene::file_header() const {
+  runtime::PvsBake bake;
+  bake.meta = metadata_of(*city_, options_);
+  for (const geometry::CityObject& o : city_->objects)
+    bake.objects.push_back({o.source_id,
+                            {o.bbox.xy.min.x, o.bbox.xy.min.y, o.bbox.zmin, o.bbox.xy.max.x,
+                             o.bbox.xy.max.y, o.bbox.zmax}});
+  return bake;
+}
+
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,236 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The hierarchical occlusion test (thesis 5.6) against the brute-force reference (one map over
+// the whole city, every occluder), cell by cell; the horizon test on hand-built maps; the pieces
+// it rests on (whole-pixel shadows, the quadtree, wide shadow wedges).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "urbanpvs/cities/city_generator.hpp"
+#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/geometry/CityReader.hpp"
+#include "urbanpvs/preprocess/BakeScene.hpp"
+#include "urbanpvs/preprocess/CellVisibility.hpp"
+#include "urbanpvs/preprocess/CpuRasterizer.hpp"
+#include "urbanpvs/preprocess/CullMapHorizon.hpp"
+#include "urbanpvs/preprocess/SpatialIndex.hpp"
+
+namespace urbanpvs::preprocess {
+namespace {
+
+const geometry::City& small_city() {
+  static const geometry::City city = [] {
+    cities::CityParams p;
+    p.size_km2 = 0.1;
+    p.seed = 5;
+    return geometry::read_city_text(cities::cityJsonText(cities::generateCity(p)), "gen.city.json");
+  }();
+  return city;
+}
+
+// Cells in a strip from the middle of the city to beyond its edge.
+BakeOptions strip_options(const geometry::City& city) {
+  BakeOptions o;
+  o.cells.max_cell_edge = 30;
+  const geometry::Box2 b = city.bounds().xy;
+  const double y = 0.5 * (b.min.y + b.max.y), x = 0.5 * (b.min.x + b.max.x);
+  o.cells.region = {geometry::Polygon{
+      {{x, y - 12}, {b.max.x + 20, y - 12}, {b.max.x + 20, y + 12}, {x, y + 12}}, {}}};
+  return o;
+}
+
+struct Comparison {
+  std::size_t cells = 0, not_superset = 0;
+  double hierarchical = 0, brute = 0;
+  CellCounters counters;
+};
+
+Comparison compare(const geometry::City& city, BakeOptions options) {
+  const BakeScene hier_scene(city, options);
+  options.method = Method::BruteForce;
+  const BakeScene brute_scene(city, options);
+  CellVisibility hier(hier_scene), brute(brute_scene);
+  Comparison c;
+  for (std::uint32_t i = 0; i < hier_scene.cell_count(); ++i) {
+    const std::vector<std::uint32_t> h = hier.pvs(i, &c.counters), b = brute.pvs(i);
+    ++c.cells;
+    if (!std::includes(h.begin(), h.end(), b.begin(), b.end())) {
+      ++c.not_superset;
+      ADD_FAILURE() << "cell " << i
+                    << ": the hierarchical PVS misses an object of the brute-force PVS";
+    }
+    c.hierarchical += double(h.size());
+    c.brute += double(b.size());
+  }
+  return c;
+}
+
+TEST(Hierarchical, FineMapsGiveTheBruteForcePvsOrASupersetAtMostTwoPercentLarger) {
+  BakeOptions o = strip_options(small_city());
+  o.fine_map = 65536;  // the thesis's single pixel size at every step
+  const Comparison c = compare(small_city(), o);
+  ASSERT_GT(c.cells, 15u);
+  EXPECT_EQ(c.not_superset, 0u);
+  EXPECT_LE(c.hierarchical, 1.02 * c.brute);
+  // The hierarchy did its work: objects and occluders rejected by the horizon, early breaks.
+  EXPECT_GT(c.counters.objects_behind_horizon, 0u);
+  EXPECT_GT(c.counters.occluders_behind_horizon, 0u);
+  EXPECT_GE(c.counters.maps, c.counters.cells);
+  EXPECT_LE(c.counters.early_breaks, c.counters.cells);
+  EXPECT_LE(c.counters.occluders_rendered, c.counters.occluders_considered);
+  std::printf("cells %zu mean PVS hierarchical %.2f brute force %.2f; early breaks %llu\n", c.cells,
+              c.hierarchical / double(c.cells), c.brute / double(c.cells),
+              static_cast<unsigned long long>(c.counters.early_breaks));
+}
+
+TEST(Hierarchical, CoarseFarMapsStayASupersetOfTheBruteForcePvs) {
+  BakeOptions o = strip_options(small_city());
+  o.initial_map = 32;
+  o.fine_map = 64;  // every map beyond 64 pixels is coarse, with whole-pixel coverage
+  const Comparison c = compare(small_city(), o);
+  EXPECT_EQ(c.not_superset, 0u);
+  EXPECT_GE(c.hierarchical, c.brute);
+  std::printf("coarse: mean PVS hierarchical %.2f brute force %.2f\n",
+              c.hierarchical / double(c.cells), c.brute / double(c.cells));
+}
+
+TEST(Hierarchical, SameCellSameAnswerWhateverCameBefore) {
+  const BakeScene scene(small_city(), strip_options(small_city()));
+  CellVisibility a(scene), b(scene);
+  const std::uint32_t last = static_cast<std::uint32_t>(scene.cell_count() - 1);
+  for (std::uint32_t i = 0; i < scene.cell_count(); i += 3) (void)a.pvs(i);
+  EXPECT_EQ(a.pvs(last), b.pvs(last));
+  EXPECT_EQ(a.pvs(0), b.pvs(0));
+}
+
+// A map whose every pixel holds `z`, 100 x 100 pixels of 1 m from the origin.
+CullMap flat_map(float z) {
+  CullMapGrid g;
+  g.origin = {0, 0};
+  g.pixel = 1;
+  g.width = g.height = 100;
+  CullMap m(g);
+  m.fill(z);
+  return m;
+}
+
+geometry::Box3 box3(double x0, double y0, double x1, double y1, double zmax) {
+  geometry::Box3 b;
+  b.xy = {{x0, y0}, {x1, y1}};
+  b.zmin = 0;
+  b.zmax = zmax;
+  return b;
+}
+
+TEST(Horizon, HidesWhatStaysBelowTheBorderAlongEverySightLine) {
+  const CullMap map = flat_map(10);
+  const CellBox cell{{{48, 48}, {52, 52}}, 2};
+  // Low and beyond the east border: every sight line stays below 10 m at the border.
+  EXPECT_TRUE(hidden_behind_horizon(map, cell, box3(120, 40, 130, 60, 8)));
+  // A tower: the sight line to its top rises above 10 m by the border (48 m from the cell,
+  // 68 m to the tower: 2 + 98·48/68 > 10).
+  EXPECT_FALSE(hidden_behind_horizon(map, cell, box3(120, 40, 130, 60, 100)));
+  // Far enough, a tall building sinks below the horizon: 2 + 18·52/1896 < 10.
+  EXPECT_TRUE(hidden_behind_horizon(map, cell, box3(1950, 40, 1960, 60, 20)));
+  // Not entirely outside the map: the horizon says nothing.
+  EXPECT_FALSE(hidden_behind_horizon(map, cell, box3(90, 40, 130, 60, 1)));
+}
+
+TEST(Horizon, OneLowBorderPixelInTheViewChannelMakesItVisible) {
+  CullMap map = flat_map(10);
+  map.at(99, 50) = 1;  // a gap in the horizon, straight east of the cell
+  const CellBox cell{{{48, 48}, {52, 52}}, 2};
+  EXPECT_FALSE(hidden_behind_horizon(map, cell, box3(120, 45, 130, 55, 5)));
+  // The same gap does not matter for a box to the north.
+  EXPECT_TRUE(hidden_behind_horizon(map, cell, box3(45, 120, 55, 130, 5)));
+  // Nor for a box to the east but seen through other border pixels only.
+  EXPECT_TRUE(hidden_behind_horizon(map, cell, box3(120, 100, 130, 130, 5)));
+}
+
+TEST(WholePixel, ErodedShadowsCoverWholePixelsAtTheirLowestHeight) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> pos(-50, 50), eye(0.5, 20), top(5, 40);
+  const Box2 clip{{-60, -60}, {60, 60}};
+  int pixels = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 v{pos(rng), pos(rng), eye(rng)};
+    const Vec2 a{pos(rng), pos(rng)}, b{pos(rng), pos(rng)};
+    const auto s = occluder_shadow(v, a, b, top(rng), clip);
+    if (!s) continue;
+    const double k = 4.0;
+    const auto w = whole_pixel_part(*s, k);
+    if (!w) continue;
+    CullMapGrid g;
+    g.origin = {-60, -60};
+    g.pixel = k;
+    g.width = g.height = 30;
+    g.whole_pixel = true;
+    CullMap map(g);
+    rasterize_max(*w, map);
+    for (int j = 0; j < g.height; ++j)
+      for (int i = 0; i < g.width; ++i) {
+        if (map.at(i, j) == CullMap::kNothingHidden) continue;
+        ++pixels;
+        for (double dx : {-0.5, 0.5})
+          for (double dy : {-0.5, 0.5}) {
+            const Vec2 c = g.center(i, j) + Vec2{dx * k, dy * k};
+            // The corner lies in the original shadow, at least as high as the stored value.
+            for (std::size_t e = 0; e < s->polygon.size(); ++e)
+              ASSERT_GE(geometry::cross(s->polygon[(e + 1) % s->polygon.size()] - s->polygon[e],
+                                        c - s->polygon[e]),
+                        -1e-9);
+            ASSERT_LE(double(map.at(i, j)), s->height(c) + 1e-9);
+          }
+      }
+  }
+  EXPECT_GT(pixels, 1000);
+}
+
+TEST(OccluderShadow, GrazingWallsShadowAllTheWayToTheMapBorder) {
+  // Seen from half a metre in front of a long wall, the wedge behind it opens to nearly 180°:
+  // everything behind the wall up to the clip border is in its shadow.
+  const Vec3 v{0, -0.5, 2};
+  const auto s = occluder_shadow(v, {-100, 0}, {100, 0}, 10, {{-50, -10}, {50, 100}});
+  ASSERT_TRUE(s);
+  for (const Vec2 p : {Vec2{0, 95}, Vec2{-45, 95}, Vec2{45, 95}, Vec2{0, 5}}) {
+    bool in = true;
+    for (std::size_t e = 0; e < s->polygon.size(); ++e)
+      in = in && geometry::cross(s->polygon[(e + 1) % s->polygon.size()] - s->polygon[e],
+                                 p - s->polygon[e]) >= 0;
+    EXPECT_TRUE(in) << p.x << ", " << p.y;
+  }
+}
+
+TEST(BoxQuadtree, HoldsEveryItemOnceInsideItsNodesBoxes) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> pos(0, 1000), size(1, 40), h(3, 60);
+  std::vector<geometry::Box3> boxes;
+  for (int i = 0; i < 2000; ++i) {
+    const double x = pos(rng), y = pos(rng);
+    boxes.push_back(box3(x, y, x + size(rng), y + size(rng), h(rng)));
+  }
+  const BoxQuadtree tree(boxes, 8);
+  std::vector<int> seen(boxes.size(), 0);
+  std::size_t nodes = 0;
+  tree.visit(
+      [&](std::uint32_t id, const BoxQuadtree::Node& n) {
+        ++nodes;
+        std::uint32_t below = 0;
+        tree.for_each_item_below(id, [&](std::uint32_t item) {
+          ++below;
+          const geometry::Box3& b = boxes[item];
+          EXPECT_TRUE(b.xy.min.x >= n.box.xy.min.x && b.xy.max.x <= n.box.xy.max.x &&
+                      b.xy.min.y >= n.box.xy.min.y && b.xy.max.y <= n.box.xy.max.y &&
+                      b.zmax <= n.box.zmax);
+        });
+        EXPECT_EQ(below, n.total);
+        return true;
+      },
+      [&](std::uint32_t item) { ++seen[item]; });
+  EXPECT_EQ(nodes, tree.nodes().size());
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+}
+
+}  // namespace
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,242 @@
+#!/usr/bin/env bash
+# Integration tests of urbanpvs-preprocess on a small generated city (0.1 km², seed 3, cells only
+# in a 160 m square, 40 m cell edges, ε = 3 m: about 120 cells, a bake of 1-2 s), one case per
+# ctest test:
+#   threads   1 and 2 threads give byte-identical files; report, metadata, no leftovers; the
+#             ray-cast validator finds no miss
+#   resume    kill -9 at several points, then --resume (with varying thread counts) gives the
+#             byte-identical file
+#   torn      the same after a torn last record and after a garbage tail; --resume without a
+#             journal simply bakes
+#   mismatch  a journal of other settings (or not a journal) is refused, exit 2, and kept
+#   failures  unwritable output/report, bad input, bad options: documented exit code, no output
+#   config    --config settings apply, the command line wins
+#   help      --help lists every option
+# Usage: preprocess_cli_test.sh CASE WORK_DIR PREPROCESS CITYGEN VALIDATE INSPECT BAD_INPUT_DIR
+set -euo pipefail
+case_name=$1 work=$2 preprocess=$3 citygen=$4 validate=$5 inspect=$6 bad=$7
+
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+same() { cmp -s "$1" "$2" || fail "$1 and $2 differ"; }
+absent() { for f in "$@"; do [ ! -e "$f" ] || fail "$f was left behind"; done; }
+no_temporaries() {
+  local left
+  left=$(ls -A | grep -E '\.tmp-[0-9]+$|\.journal\.new$' || true)
+  [ -z "$left" ] || fail "temporary files left: $left"
+}
+now_ms() { date +%s%3N; }
+
+"$citygen" --size-km2 0.1 --seed 3 -q -o city.city.json
+# The city spans (0, 340000)..(316, 340316) in EPSG:31256; cells only in its middle.
+cat > region.geojson <<'JSON'
+{"type": "Polygon", "coordinates": [[[78, 340078], [238, 340078], [238, 340238], [78, 340238], [78, 340078]]]}
+JSON
+bake=(city.city.json --max-cell-edge 40 --epsilon 3 --region region.geojson --quiet)
+
+# A reference file; sets ref_ms to how long it took.
+make_reference() {
+  local start
+  start=$(now_ms)
+  "$preprocess" "${bake[@]}" --threads 2 -o ref.pvs
+  ref_ms=$(( $(now_ms) - start ))
+  echo "reference bake: ${ref_ms} ms"
+  absent ref.pvs.journal
+}
+
+# Starts a bake of OUT in the background and kills it with SIGKILL after MS milliseconds, or
+# once its journal holds a record when MS is "record". Sets killed=1 when it was still running.
+bake_and_kill() {
+  local out=$1 when=$2 threads=$3 pid
+  "$preprocess" "${bake[@]}" --threads "$threads" -o "$out" &
+  pid=$!
+  if [ "$when" = record ]; then
+    # The header is 40 bytes; anything beyond is at least part of the first record.
+    for _ in $(seq 1 6000); do
+      [ "$(stat -c %s "$out.journal" 2>/dev/null || echo 0)" -gt 40 ] && break
+      kill -0 "$pid" 2>/dev/null || break
+      sleep 0.01
+    done
+  else
+    sleep "$(awk -v ms="$when" 'BEGIN { printf "%.3f", ms / 1000 }')"
+  fi
+  killed=0
+  if kill -9 "$pid" 2>/dev/null; then killed=1; fi
+  wait "$pid" 2>/dev/null || true
+}
+
+case $case_name in
+threads)
+  "$preprocess" "${bake[@]}" --threads 1 -o one.pvs --report one.json
+  "$preprocess" "${bake[@]}" --threads 2 -o two.pvs --report two.json
+  same one.pvs two.pvs
+  absent one.pvs.journal two.pvs.journal
+  no_temporaries
+  for key in '"input_hash"' '"settings"' '"counts"' '"seconds"' '"visibility"' '"counters"' \
+             '"early_breaks"' '"peak_memory_bytes"' '"fraction_culled"' '"cells_computed"'; do
+    grep -q "$key" one.json || fail "report lacks $key"
+  done
+  grep -q '"threads": 2' two.json || fail "report lacks the thread count"
+  "$inspect" one.pvs > summary.txt
+  grep -q 'property:    max_cell_edge_m = 40' summary.txt || fail "settings not in the metadata"
+  grep -q 'property:    method = hierarchical' summary.txt || fail "method not in the metadata"
+  grep -q 'property:    region = region.geojson' summary.txt || fail "region not in the metadata"
+  "$validate" city.city.json one.pvs --viewpoints 400 --tightness-viewpoints 50 ||
+    fail "urbanpvs-validate found misses (or failed)"
+  # Without --quiet: the summary names cells, PVS sizes and stage times.
+  "$preprocess" city.city.json --max-cell-edge 40 --epsilon 3 --region region.geojson \
+    -o three.pvs 2> stderr.txt
+  same one.pvs three.pvs
+  for word in 'cells:' 'objects:' 'PVS:' 'culled' 'time:' 'visibility' 'peak'; do
+    grep -q "$word" stderr.txt || fail "summary lacks '$word': $(cat stderr.txt)"
+  done
+  ;;
+
+resume)
+  make_reference
+  # Kill points: once the first record is out, then spread over the run (with jitter).
+  points=(record)
+  for f in 20 45 70 90; do points+=($(( ref_ms * f / 100 + RANDOM % 50 ))); done
+  resumed_from_records=0
+  i=0
+  for when in "${points[@]}"; do
+    i=$((i + 1))
+    threads=$(( i % 2 + 1 ))
+    bake_and_kill k$i.pvs "$when" 2
+    # A kill leaves no output or the whole output (it is renamed into place), never a part.
+    if [ -e k$i.pvs ]; then
+      same ref.pvs k$i.pvs
+      echo "kill point $when ms: the output was complete already (killed=$killed)"
+      rm k$i.pvs
+    fi
+    "$preprocess" "${bake[@]}" --threads "$threads" -o k$i.pvs --resume --report k$i.json
+    same ref.pvs k$i.pvs
+    absent k$i.pvs.journal
+    no_temporaries
+    from_journal=$(sed -n 's/.*"cells_from_journal": \([0-9]*\).*/\1/p' k$i.json)
+    echo "kill point $when ms (threads on resume: $threads): $from_journal cells from the journal"
+    [ "${from_journal:-0}" -gt 0 ] && resumed_from_records=$((resumed_from_records + 1))
+  done
+  [ "$resumed_from_records" -ge 1 ] || fail "no kill left a journal with records to resume"
+  ;;
+
+torn)
+  make_reference
+  # A torn last record and a garbage tail (as a power loss leaves) are cut off.
+  for tail in torn garbage; do
+    bake_and_kill $tail.pvs record 1
+    [ "$killed" = 1 ] || fail "the bake finished before its first record could be killed"
+    size=$(stat -c %s $tail.pvs.journal)
+    if [ $tail = torn ] && [ "$size" -gt 44 ]; then
+      truncate -s $((size - 3)) $tail.pvs.journal
+    else
+      head -c 100 /dev/urandom >> $tail.pvs.journal
+    fi
+    "$preprocess" "${bake[@]}" --threads 2 -o $tail.pvs --resume
+    same ref.pvs $tail.pvs
+  done
+  # --resume without a journal simply bakes.
+  "$preprocess" "${bake[@]}" -o fresh.pvs --resume
+  same ref.pvs fresh.pvs
+  ;;
+
+mismatch)
+  bake_and_kill other.pvs record 1
+  [ "$killed" = 1 ] || fail "the bake finished before it could be killed"
+  journal_size=$(stat -c %s other.pvs.journal)
+  # Other settings (cell edge 35 m instead of 40 m): refused, and the journal is kept.
+  rc=0
+  "$preprocess" city.city.json --region region.geojson --epsilon 3 --max-cell-edge 35 \
+    -o other.pvs --resume --quiet 2> stderr.txt || rc=$?
+  [ "$rc" = 2 ] || fail "exit status $rc for a mismatched journal, expected 2"
+  grep -q 'other.pvs.journal' stderr.txt || fail "message does not name the journal: $(cat stderr.txt)"
+  grep -q 'other inputs or settings' stderr.txt || fail "message lacks the reason: $(cat stderr.txt)"
+  absent other.pvs
+  [ "$(stat -c %s other.pvs.journal)" = "$journal_size" ] || fail "the refused journal was changed"
+  # Other inputs (another city): refused too.
+  "$citygen" --size-km2 0.1 --seed 4 -q -o city4.city.json
+  rc=0
+  "$preprocess" city4.city.json --region region.geojson --epsilon 3 --max-cell-edge 40 \
+    -o other.pvs --resume --quiet 2> stderr.txt || rc=$?
+  [ "$rc" = 2 ] || fail "exit status $rc for a journal of other inputs, expected 2"
+  # Not a journal at all.
+  echo '{"not": "a journal"}' > junk.pvs.journal
+  rc=0
+  "$preprocess" "${bake[@]}" -o junk.pvs --resume 2> stderr.txt || rc=$?
+  [ "$rc" = 2 ] || fail "exit status $rc for a file that is no journal, expected 2"
+  grep -q 'not an urbanpvs-preprocess journal' stderr.txt || fail "$(cat stderr.txt)"
+  # Without --resume the stale journal is replaced and the bake succeeds.
+  "$preprocess" city.city.json --region region.geojson --epsilon 3 --max-cell-edge 35 \
+    -o other.pvs --quiet
+  absent other.pvs.journal
+  [ -s other.pvs ] || fail "no output after replacing the journal"
+  ;;
+
+failures)
+  expect() {  # expect RC WHAT -- command...: runs it, checks the exit status, prints stderr
+    local want=$1 what=$2 rc=0
+    shift 3
+    "$@" 2> stderr.txt || rc=$?
+    [ "$rc" = "$want" ] || fail "$what: exit status $rc, expected $want; stderr: $(cat stderr.txt)"
+    echo "$what: exit $rc: $(head -n 1 stderr.txt)"
+  }
+  expect 5 "output directory missing" -- "$preprocess" "${bake[@]}" -o no/such/dir/out.pvs
+  absent no
+  if [ "$(id -u)" != 0 ]; then  # root writes into read-only directories anyway
+    mkdir readonly && chmod 555 readonly
+    expect 5 "read-only output directory" -- "$preprocess" "${bake[@]}" -o readonly/out.pvs
+    [ -z "$(ls -A readonly)" ] || fail "files left in readonly/"
+  fi
+  expect 5 "output is a directory" -- "$preprocess" "${bake[@]}" -o .
+  expect 5 "report unwritable" -- "$preprocess" "${bake[@]}" -o r.pvs --report no/such/r.json
+  absent r.pvs
+  no_temporaries
+  expect 11 "invalid JSON input" -- "$preprocess" "$bad/truncated.city.json" -o bad.pvs --quiet
+  grep -q truncated.city.json stderr.txt || fail "the message does not name the input"
+  absent bad.pvs bad.pvs.journal
+  expect 15 "missing height" -- "$preprocess" "$bad/geojson_missing_height.geojson" -o bad.pvs
+  absent bad.pvs bad.pvs.journal
+  expect 2 "missing input file" -- "$preprocess" no_such_city.json -o bad.pvs
+  expect 2 "no output given" -- "$preprocess" city.city.json
+  expect 2 "pixel too large" -- "$preprocess" city.city.json -o bad.pvs --epsilon 1 --pixel 2
+  grep -qi 'pixel' stderr.txt || fail "the message does not name the pixel size"
+  expect 2 "zero threads" -- "$preprocess" city.city.json -o bad.pvs --threads 0
+  expect 2 "bad eye band" -- "$preprocess" city.city.json -o bad.pvs --eye-band 2
+  expect 2 "bad backend" -- "$preprocess" city.city.json -o bad.pvs --backend vulkan
+  echo '{"epsilon": 1, "max_cel_edge": 3}' > typo.json
+  expect 2 "unknown config key" -- "$preprocess" city.city.json -o bad.pvs --config typo.json
+  grep -q max_cel_edge stderr.txt || fail "the message does not name the unknown key"
+  absent bad.pvs bad.pvs.journal
+  ;;
+
+config)
+  "$preprocess" "${bake[@]}" --threads 1 -o cli.pvs
+  # Paths in the config are relative to it; the command line's --epsilon wins over the config's.
+  mkdir conf
+  mv region.geojson conf/
+  cat > conf/settings.json <<'JSON'
+{"max-cell-edge": 40, "region": "region.geojson", "epsilon": 5, "threads": 2, "quiet": true,
+ "eye_band": "0:2", "report": "config-report.json"}
+JSON
+  "$preprocess" city.city.json --config conf/settings.json --epsilon 3 -o config.pvs
+  same cli.pvs config.pvs
+  [ -s conf/config-report.json ] || fail "the report named in the config was not written"
+  grep -q '"epsilon_m": 3,' conf/config-report.json || fail "epsilon of the command line not used"
+  ;;
+
+help)
+  "$preprocess" --help > help.txt
+  for option in --output --epsilon --pixel --max-cell-edge --eye-band --region --default-height \
+                --threads --backend --method --report --resume --quiet --config; do
+    grep -q -- "$option" help.txt || fail "--help does not list $option"
+  done
+  ;;
+
+*)
+  fail "unknown case $case_name"
+  ;;
+esac
+echo "PASS: $case_name"
