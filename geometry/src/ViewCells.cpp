@@ -144,10 +144,14 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
       e.vertex = {a, b};
       e.cell = {std::int32_t(c), n};
       e.first_sample = std::uint32_t(mesh.samples.size());
-      const Point3 pa{mesh.vertices[a].x, mesh.vertices[a].y,
-                      mesh.vertex_ground[a] + options.eye_max};
-      const Point3 pb{mesh.vertices[b].x, mesh.vertices[b].y,
-                      mesh.vertex_ground[b] + options.eye_max};
+      // Samples sit at the top of the prism, level (thesis 5.3): from a flat top face, the face's
+      // boundary sees all the interior sees (for a sight line rising to its target the
+      // boundary point farthest back does, for a falling one the nearest). A top that followed
+      // the ground would leave viewpoints up to zmax above the samples. An edge shared by two
+      // cells takes the higher top: a higher viewpoint sees a superset over 2.5D occluders.
+      const double top = n >= 0 ? std::max(cell.zmax, mesh.cells[std::size_t(n)].zmax) : cell.zmax;
+      const Point3 pa{mesh.vertices[a].x, mesh.vertices[a].y, top};
+      const Point3 pb{mesh.vertices[b].x, mesh.vertices[b].y, top};
       sample_top_edge(pa, pb, options.epsilon, mesh.samples);
       if (mesh.samples.size() > std::numeric_limits<std::uint32_t>::max())
         throw std::invalid_argument("ViewCellOptions.epsilon = " + std::to_string(options.epsilon) +

@@ -306,6 +306,7 @@ std::vector<std::pair<std::string, std::string>> result_settings(const Preproces
       {"backend", b.backend == Backend::Cpu ? "cpu" : "osmesa"},
       {"method", b.method == Method::Hierarchical ? "hierarchical" : "brute-force"},
       {"initial_map_px", std::to_string(b.initial_map)},
+      {"fine_map_px", std::to_string(b.fine_map)},
       {"shrink_override_m", exact(b.shrink_override)},
       {"default_height_m", r.read.default_height ? exact(*r.read.default_height) : "none"},
       {"level_height_m", exact(r.read.level_height)},

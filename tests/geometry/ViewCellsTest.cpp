@@ -290,12 +290,14 @@ void check_edges_and_angles(const ViewCellMesh& m) {
 // Every point of every top edge within ε of a sample of that edge; samples shared bit for bit.
 void check_samples(const ViewCellMesh& m) {
   const double eps = m.options.epsilon;
-  auto top = [&](std::uint32_t v) {
-    return Point3{m.vertices[v].x, m.vertices[v].y, m.vertex_ground[v] + m.options.eye_max};
-  };
   std::vector<Point3> again;
   for (std::size_t i = 0; i < m.edges.size(); ++i) {
     const CellEdge& e = m.edges[i];
+    // The top edge is level at the higher prism top of the cells beside it (thesis 5.3: the
+    // boundary of a flat top face sees all the prism sees).
+    double level = m.cells[std::size_t(e.cell[0])].zmax;
+    if (e.cell[1] >= 0) level = std::max(level, m.cells[std::size_t(e.cell[1])].zmax);
+    auto top = [&](std::uint32_t v) { return Point3{m.vertices[v].x, m.vertices[v].y, level}; };
     const auto s = m.samples_of(e);
     ASSERT_GE(s.size(), 2u);
     const Point3 a = top(e.vertex[0]), b = top(e.vertex[1]);
@@ -547,11 +549,18 @@ TEST(ViewCells, GroundFromTerrain) {
     ASSERT_NEAR(c.zmin, std::min({c.ground[0], c.ground[1], c.ground[2]}) + 0.5, 1e-12);
     ASSERT_NEAR(c.zmax, std::max({c.ground[0], c.ground[1], c.ground[2]}) + 1.5, 1e-12);
   }
-  // Samples follow the top of the eye band (linear where the ground is: within the TIN).
-  for (const CellEdge& e : m.edges)
-    if (m.vertices[e.vertex[0]].x >= 0 && m.vertices[e.vertex[1]].x >= 0) {
-      for (const Point3& s : m.samples_of(e)) ASSERT_NEAR(s.z, z(s.x, s.y) + 1.5, 1e-9);
+  // Samples are level at the top of the cells they serve, never below the eye band's top over
+  // the ground beneath them (the top of every prism they stand for).
+  for (const CellEdge& e : m.edges) {
+    double level = m.cells[std::size_t(e.cell[0])].zmax;
+    if (e.cell[1] >= 0) level = std::max(level, m.cells[std::size_t(e.cell[1])].zmax);
+    for (const Point3& s : m.samples_of(e)) {
+      ASSERT_EQ(s.z, level);
+      if (s.x >= 0) {
+        ASSERT_GE(s.z, z(s.x, s.y) + 1.5 - 1e-9);
+      }
     }
+  }
 }
 
 TEST(ViewCells, GroundFromBuildingsOnTheirWalls) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <stdexcept>
 
@@ -52,7 +53,8 @@ void cube_map_seen(const RayScene& scene, const Point3& v, int res, double reach
         const double sign = face % 2 ? -1 : 1;
         d[axis] = sign, d[(axis + 1) % 3] = s, d[(axis + 2) % 3] = t;
         const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        const Point3 q{v.x + reach * d[0] / len, v.y + reach * d[1] / len, v.z + reach * d[2] / len};
+        const Point3 q{v.x + reach * d[0] / len, v.y + reach * d[1] / len,
+                       v.z + reach * d[2] / len};
         scene.seen_along(v, q, seen);
         ++rays;
       }
@@ -73,11 +75,21 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
   }
   if (pvs.cell_count() == 0) throw std::runtime_error("the PVS file has no cells");
 
-  const RayScene scene(city);
+  // Cracks narrower than the bake's block gap tolerance are closed, as in the bake (documented
+  // input semantics: such gaps are digitizing slivers between buildings sharing a wall).
+  double gap = 0;
+  for (std::size_t i = 0; i < pvs.property_count(); ++i) {
+    std::string_view key, value;
+    if (pvs.property(i, key, value) == runtime::Status::kOk && key == "gap_tolerance_m")
+      gap = std::strtod(std::string(value).c_str(), nullptr);
+  }
+  const RayScene scene(city, std::max(RayScene::kSharedWall, 0.5 * gap));
   std::vector<std::vector<Point3>> points;
-  for (const geometry::CityObject& o : city.objects) points.push_back(target_points(o, options.point_spacing));
+  for (const geometry::CityObject& o : city.objects)
+    points.push_back(target_points(o, options.point_spacing));
   const double reach = 2 * std::hypot(scene.bounds().max.x - scene.bounds().min.x,
-                                      scene.bounds().max.y - scene.bounds().min.y) + 1000;
+                                      scene.bounds().max.y - scene.bounds().min.y) +
+                       1000;
 
   ValidationReport report;
   std::mt19937_64 rng(options.seed);
@@ -85,8 +97,8 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
   std::vector<char> in_pvs(city.objects.size());
   std::vector<std::uint32_t> seen;
   for (std::size_t n = 0; n < options.viewpoints; ++n) {
-    const auto cell = static_cast<std::uint32_t>(std::uniform_int_distribution<std::uint64_t>(
-        0, pvs.cell_count() - 1)(rng));
+    const auto cell = static_cast<std::uint32_t>(
+        std::uniform_int_distribution<std::uint64_t>(0, pvs.cell_count() - 1)(rng));
     runtime::CellGeometry geometry;
     pvs.cell(cell, geometry);
     const Point3 v = random_viewpoint(geometry, n % 2 == 0, rng);
@@ -101,8 +113,7 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
       for (const Point3& q : points[o]) {
         ++report.rays;
         if (scene.blocked(v, q, o)) continue;
-        if (!in_pvs[o])
-          report.misses.push_back({cell, v, o, city.objects[o].source_id, q});
+        if (!in_pvs[o]) report.misses.push_back({cell, v, o, city.objects[o].source_id, q});
         seen.push_back(o);
         break;
       }

@@ -25,7 +25,8 @@ struct ViewCellOptions {
   double max_cell_edge = 18.0;
   /// Bottom of the eye band above the ground. [Units: m] [Limit: 0 .. eye_max]
   double eye_min = 0.0;
-  /// Top of the eye band above the ground; samples sit at this height. [Units: m]
+  /// Top of the eye band above the ground. A cell's prism reaches this far above its highest
+  /// corner; its samples sit level at that top (thesis 5.3). [Units: m]
   /// [Limit: eye_min .. 1000]
   double eye_max = 2.0;
   /// Margin around the buildings' bounding rectangle that forms the default region (ignored when

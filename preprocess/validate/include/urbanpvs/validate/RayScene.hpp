@@ -2,12 +2,15 @@
 // The ground truth of urbanpvs-validate: the real buildings as prisms, traced by rays. It shares
 // no code with the cull-map path, so an error there cannot hide here.
 //  - Blockers are the buildings' occluder prisms *before* shrinking (ground footprint up to the
-//    lowest roof point): solid for sure, so a ray they stop is really stopped.
+//    lowest roof point, and down into the ground below it; grown by half the bake's block gap
+//    tolerance, at least 1 mm, so that buildings sharing a wall, or closer than the gap the
+//    bake fuses, are one solid): solid for sure, so a ray they stop is really stopped.
 //  - Targets are each building's footprint up to its highest point: a ray that enters a target
 //    before any blocker sees that building.
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "urbanpvs/geometry/CityModel.hpp"
@@ -24,7 +27,12 @@ struct Point3 {
 
 class RayScene {
  public:
-  explicit RayScene(const geometry::City& city);
+  /// Blocker footprints grow by `crack` (m): buildings closer than 2·crack are one solid.
+  explicit RayScene(const geometry::City& city, double crack = kSharedWall);
+  RayScene(const RayScene&) = delete;  // prisms point into grown_
+  RayScene& operator=(const RayScene&) = delete;
+
+  static constexpr double kSharedWall = 1e-3;  ///< [m] least growth: closes shared walls
 
   /// True when the open segment p→q passes through a blocker of any object other than `skip`.
   bool blocked(const Point3& p, const Point3& q, std::uint32_t skip) const;
@@ -35,6 +43,7 @@ class RayScene {
   const Box2& bounds() const { return bounds_; }
 
  private:
+  static constexpr double kBelowGround = -1e6;  ///< [m] where blockers end below the ground
   struct Prism {
     const Polygon* footprint;
     Box2 box;
@@ -47,6 +56,7 @@ class RayScene {
   template <class F>
   void for_each_candidate(const Point3& p, const Point3& q, F&& f) const;
 
+  std::deque<Polygon> grown_;  ///< blocker footprints (stable addresses)
   std::vector<Prism> prisms_;
   Box2 bounds_;
   double cell_ = 20;
