@@ -2,13 +2,15 @@
 #include "urbanpvs/preprocess/CpuRasterizer.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 
 namespace urbanpvs::preprocess {
 
 std::size_t rasterize_max(const OccluderShadow& shadow, CullMap& map) {
   const CullMapGrid& g = map.grid();
-  const std::vector<Vec2>& poly = shadow.polygon;
+  const ShadowPolygon& poly = shadow.polygon;
   double ymin = poly[0].y, ymax = poly[0].y;
   for (Vec2 p : poly) ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
   // Rows whose centre line lies in [ymin, ymax).
@@ -29,10 +31,22 @@ std::size_t rasterize_max(const OccluderShadow& shadow, CullMap& map) {
     if (!(xl < xr)) continue;
     const int i0 = std::max(0, static_cast<int>(std::ceil((xl - g.origin.x) / g.pixel - 0.5)));
     const int i1 = std::min(g.width - 1, static_cast<int>(std::ceil((xr - g.origin.x) / g.pixel - 0.5)) - 1);
+    // Along the row the height is linear: z(i) = row + i·step, exactly as height(center(i, j)).
+    const double row = shadow.height({g.origin.x + 0.5 * g.pixel, y});
+    const double step = shadow.a * g.pixel;
+    float* cells = &map.at(0, j);
+    // float_below without branches, so the loop vectorizes: one float step down (in the bit
+    // pattern: towards zero for negatives, away from it for positives, +0 taken as -0) where the
+    // rounded value came out above the exact one.
     for (int i = i0; i <= i1; ++i) {
-      const float z = float_below(shadow.height(g.center(i, j)));
-      float& cell = map.at(i, j);
-      if (z > cell) cell = z;
+      const double exact = row + i * step;
+      float f = static_cast<float>(exact);
+      const bool high = static_cast<double>(f) > exact;
+      f = f == 0.0f ? -0.0f : f;
+      std::int32_t bits = std::bit_cast<std::int32_t>(f);
+      bits += high ? (bits < 0 ? 1 : -1) : 0;
+      f = std::bit_cast<float>(bits);
+      cells[i] = cells[i] < f ? f : cells[i];
     }
     if (i1 >= i0) written += static_cast<std::size_t>(i1 - i0 + 1);
   }

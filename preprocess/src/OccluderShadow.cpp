@@ -9,10 +9,16 @@ namespace {
 
 using geometry::cross;
 
+double signed_area2(const ShadowPolygon& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  return a;
+}
+
 // Keeps the part of a convex polygon where `inside` holds (one Sutherland-Hodgman step).
 template <class Inside, class Cut>
-std::vector<Vec2> clip_half_plane(const std::vector<Vec2>& poly, Inside inside, Cut cut) {
-  std::vector<Vec2> out;
+ShadowPolygon clip_half_plane(const ShadowPolygon& poly, Inside inside, Cut cut) {
+  ShadowPolygon out;
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
     const bool pin = inside(p), qin = inside(q);
@@ -22,7 +28,7 @@ std::vector<Vec2> clip_half_plane(const std::vector<Vec2>& poly, Inside inside, 
   return out;
 }
 
-std::vector<Vec2> clip_to_box(std::vector<Vec2> poly, const Box2& box) {
+ShadowPolygon clip_to_box(ShadowPolygon poly, const Box2& box) {
   auto at_x = [](double x) {
     return [x](Vec2 p, Vec2 q) { return Vec2{x, p.y + (q.y - p.y) * (x - p.x) / (q.x - p.x)}; };
   };
@@ -70,9 +76,9 @@ std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b
   const Vec2 ua = unit(a - v), ub = unit(b - v), um = unit(ua + ub);
   const Vec2 ta = unit(ua + um), tb = unit(um + ub);
   const double cos_quarter = std::hypot(ua.x + um.x, ua.y + um.y) / 2;  // cos(θ/4) >= √2/2
-  std::vector<Vec2> wedge{
+  ShadowPolygon wedge{
       a, v + R * ua, v + (R / cos_quarter) * ta, v + (R / cos_quarter) * tb, v + R * ub, b};
-  if (geometry::signed_area2(wedge) < 0) std::reverse(wedge.begin(), wedge.end());
+  if (signed_area2(wedge) < 0) std::reverse(wedge.begin(), wedge.end());
   s.polygon = clip_to_box(std::move(wedge), clip);
   if (s.polygon.size() < 3) return std::nullopt;
   return s;
@@ -83,8 +89,8 @@ std::optional<OccluderShadow> whole_pixel_part(const OccluderShadow& shadow, dou
   // A square of half-side h lies in the half-plane left of p→q (unit left normal n) iff its
   // centre lies at least h·(|n.x| + |n.y|) inside: erode each edge by that, by clipping.
   const double h = pixel * (0.5 + slack);
-  const std::vector<Vec2>& poly = shadow.polygon;
-  std::vector<Vec2> out = poly;
+  const ShadowPolygon& poly = shadow.polygon;
+  ShadowPolygon out = poly;
   for (std::size_t i = 0; i < poly.size() && out.size() >= 3; ++i) {
     const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
     const Vec2 d = q - p;
@@ -100,7 +106,7 @@ std::optional<OccluderShadow> whole_pixel_part(const OccluderShadow& shadow, dou
           return u + (du / (du - dv)) * (v - u);
         });
   }
-  if (out.size() < 3 || !(geometry::signed_area2(out) > 0)) return std::nullopt;
+  if (out.size() < 3 || !(signed_area2(out) > 0)) return std::nullopt;
   OccluderShadow s = shadow;
   s.polygon = std::move(out);
   s.c -= 0.5 * pixel * (std::abs(s.a) + std::abs(s.b));

@@ -5,7 +5,9 @@
 // so that a stored height is never above the true umbra (conservative).
 #pragma once
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -82,7 +84,19 @@ class CullMap {
 /// The largest float not above `z`: heights enter the map rounded towards -infinity.
 inline float float_below(double z) {
   float f = static_cast<float>(z);
-  if (static_cast<double>(f) > z) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  if (static_cast<double>(f) > z) {
+    // One float step down, without a libm call (this runs once per pixel written): for finite
+    // non-zero floats the next lower value is one unit less in magnitude when positive, one more
+    // when negative; below +0/-0 comes the smallest negative subnormal.
+    std::uint32_t bits = std::bit_cast<std::uint32_t>(f);
+    if (f == 0.0f)
+      bits = 0x80000001u;
+    else if (f > 0.0f)
+      --bits;
+    else if (bits != 0xff800000u)  // -infinity has nothing below
+      ++bits;
+    f = std::bit_cast<float>(bits);
+  }
   return f;
 }
 

@@ -4,7 +4,10 @@
 // shadow is the (convex) wedge behind the edge, with its height given by that plane.
 #pragma once
 
+#include <array>
+#include <initializer_list>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "urbanpvs/geometry/Polygon2.hpp"
@@ -18,8 +21,36 @@ struct Vec3 {
   double x = 0, y = 0, z = 0;
 };
 
+/// A convex polygon of a shadow, stored inline: shadows are made by the ten thousand per cell
+/// and must not touch the heap. Clipping a convex polygon by a half-plane adds at most one
+/// corner: a wedge has 6, the clip box adds at most 4, whole-pixel erosion one per edge: <= 20.
+class ShadowPolygon {
+ public:
+  static constexpr std::size_t kCapacity = 32;
+  ShadowPolygon() = default;
+  ShadowPolygon(std::initializer_list<Vec2> corners) {
+    for (Vec2 c : corners) push_back(c);
+  }
+  void push_back(Vec2 c) {
+    if (size_ == kCapacity) throw std::logic_error("ShadowPolygon: more corners than convex allows");
+    corners_[size_++] = c;
+  }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const Vec2& operator[](std::size_t i) const { return corners_[i]; }
+  Vec2& operator[](std::size_t i) { return corners_[i]; }
+  const Vec2* begin() const { return corners_.data(); }
+  const Vec2* end() const { return corners_.data() + size_; }
+  Vec2* begin() { return corners_.data(); }
+  Vec2* end() { return corners_.data() + size_; }
+
+ private:
+  std::array<Vec2, kCapacity> corners_{};
+  std::size_t size_ = 0;
+};
+
 struct OccluderShadow {
-  std::vector<Vec2> polygon;   ///< convex, counter-clockwise, clipped to the requested box
+  ShadowPolygon polygon;  ///< convex, counter-clockwise, clipped to the requested box
   double a = 0, b = 0, c = 0;  ///< height over the ground: z = a·x + b·y + c
 
   double height(Vec2 p) const { return a * p.x + b * p.y + c; }
