@@ -2,6 +2,7 @@
 #include "urbanpvs/preprocess/BakeScene.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <stdexcept>
 #include <string>
 
@@ -19,12 +20,7 @@ runtime::Metadata metadata_of(const geometry::City& city, const BakeOptions& o) 
   m.settings.max_cell_edge_m = o.cells.max_cell_edge;
   m.settings.eye_min_m = o.cells.eye_min;
   m.settings.eye_max_m = o.cells.eye_max;
-  m.properties.push_back({"gap_tolerance_m", std::to_string(o.blocks.gap_tolerance)});
-  m.properties.push_back({"backend", o.backend == Backend::Cpu ? "cpu" : "osmesa"});
-  m.properties.push_back(
-      {"method", o.method == Method::Hierarchical ? "hierarchical" : "brute-force"});
-  m.properties.push_back({"initial_map_px", std::to_string(o.initial_map)});
-  m.properties.push_back({"fine_map_px", std::to_string(o.fine_map)});
+  m.properties = bake_properties(o);
   return m;
 }
 
@@ -49,6 +45,30 @@ std::vector<geometry::Box3> object_boxes(const std::vector<geometry::CityObject>
 }
 
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& o) {
+  auto exact = [](double v) {
+    char text[64];
+    const auto result = std::to_chars(text, text + sizeof text, v);
+    return std::string(text, result.ptr);
+  };
+  return {
+      {"epsilon_m", exact(o.cells.epsilon)},
+      {"pixel_m", exact(o.pixel)},
+      {"max_cell_edge_m", exact(o.cells.max_cell_edge)},
+      {"eye_min_m", exact(o.cells.eye_min)},
+      {"eye_max_m", exact(o.cells.eye_max)},
+      {"margin_m", exact(o.cells.margin)},
+      {"narrow_gap_m", exact(o.cells.narrow_gap)},
+      {"gap_tolerance_m", exact(o.blocks.gap_tolerance)},
+      {"height_step_m", exact(o.blocks.height_step)},
+      {"backend", o.backend == Backend::Cpu ? "cpu" : "osmesa"},
+      {"method", o.method == Method::Hierarchical ? "hierarchical" : "brute-force"},
+      {"initial_map_px", std::to_string(o.initial_map)},
+      {"fine_map_px", std::to_string(o.fine_map)},
+      {"shrink_override_m", exact(o.shrink_override)},
+  };
+}
 
 void BakeOptions::validate() const {
   CullMapSettings{cells.epsilon, pixel}.validate();

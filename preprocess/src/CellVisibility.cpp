@@ -67,6 +67,7 @@ CellCounters& CellCounters::operator+=(const CellCounters& o) {
 CellVisibility::CellVisibility(const BakeScene& scene)
     : scene_(scene),
       renderer_(make_cell_map_renderer(scene.options().backend, scene.zlo(), scene.zhi())),
+      all_occluders_(pointers_to(scene.occluders())),
       object_decided_(scene.city().objects.size(), 0),
       occluder_dropped_(scene.occluders().size(), 0),
       object_node_done_(scene.object_index().nodes().size(), 0),
@@ -86,7 +87,7 @@ std::vector<std::uint32_t> CellVisibility::pvs(std::uint32_t cell, CellCounters*
 std::vector<std::uint32_t> CellVisibility::brute_force(std::uint32_t cell, CellCounters& c) {
   const CullMapGrid& grid = scene_.area();
   const std::vector<Vec3> samples = scene_.samples(cell);
-  const std::vector<const geometry::Occluder*> all = pointers_to(scene_.occluders());
+  const std::vector<const geometry::Occluder*>& all = all_occluders_;
   CullMapStats stats;
   const CullMap map = renderer_->render(grid, samples, all, &stats);
   ++c.maps;

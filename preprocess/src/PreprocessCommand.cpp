@@ -195,21 +195,14 @@ void Run::compute_cells(const BakeScene& scene) {
 void Run::write_output(const BakeScene& scene) {
   runtime::PvsBake bake = scene.file_header();
   bake.meta.settings.input_hash = input_hash_;
-  // Ours replace equally named properties of the scene's header, so no key appears twice.
-  std::vector<std::pair<std::string, std::string>> ours = settings_;
+  // settings_ starts with the scene's own bake_properties (result_settings): it replaces the
+  // header's properties whole, adding the reading options, the region and the inputs.
+  bake.meta.properties = settings_;
   std::string names;
   for (const std::string& path : request_.inputs)
     names += (names.empty() ? "" : "; ") + fs::path(path).filename().string();
-  ours.emplace_back("inputs", names);
-  ours.emplace_back("input_hash", hex64(input_hash_));
-  for (auto& [key, value] : ours) {
-    auto same = std::find_if(bake.meta.properties.begin(), bake.meta.properties.end(),
-                             [&](const auto& p) { return p.first == key; });
-    if (same != bake.meta.properties.end())
-      same->second = value;
-    else
-      bake.meta.properties.emplace_back(key, value);
-  }
+  bake.meta.properties.emplace_back("inputs", names);
+  bake.meta.properties.emplace_back("input_hash", hex64(input_hash_));
   bake.cells.reserve(scene.cell_count());
   for (std::uint32_t c = 0; c < scene.cell_count(); ++c) {
     report_.pvs_entries += pvs_[c].size();
@@ -288,31 +281,21 @@ int Run::execute() {
 
 std::vector<std::pair<std::string, std::string>> result_settings(const PreprocessRequest& r,
                                                                  std::uint64_t region_hash) {
-  const BakeOptions& b = r.bake;
   const char* coordinates[] = {"auto", "geographic", "projected"};
-  return {
-      {"tool", std::string("urbanpvs-preprocess ") + URBANPVS_VERSION},
-      {"epsilon_m", exact(b.cells.epsilon)},
-      {"pixel_m", exact(b.pixel)},
-      {"max_cell_edge_m", exact(b.cells.max_cell_edge)},
-      {"eye_min_m", exact(b.cells.eye_min)},
-      {"eye_max_m", exact(b.cells.eye_max)},
-      {"margin_m", exact(b.cells.margin)},
-      {"narrow_gap_m", exact(b.cells.narrow_gap)},
-      {"region", r.region_file.empty() ? "none" : fs::path(r.region_file).filename().string()},
-      {"region_hash", r.region_file.empty() ? "none" : hex64(region_hash)},
-      {"gap_tolerance_m", exact(b.blocks.gap_tolerance)},
-      {"height_step_m", exact(b.blocks.height_step)},
-      {"backend", b.backend == Backend::Cpu ? "cpu" : "osmesa"},
-      {"method", b.method == Method::Hierarchical ? "hierarchical" : "brute-force"},
-      {"initial_map_px", std::to_string(b.initial_map)},
-      {"fine_map_px", std::to_string(b.fine_map)},
-      {"shrink_override_m", exact(b.shrink_override)},
-      {"default_height_m", r.read.default_height ? exact(*r.read.default_height) : "none"},
-      {"level_height_m", exact(r.read.level_height)},
-      {"coordinates", coordinates[static_cast<int>(r.read.coordinates)]},
-      {"skip_invalid", r.read.skip_invalid ? "true" : "false"},
-  };
+  std::vector<std::pair<std::string, std::string>> out{
+      {"tool", std::string("urbanpvs-preprocess ") + URBANPVS_VERSION}};
+  for (auto& property : bake_properties(r.bake)) out.push_back(std::move(property));
+  out.insert(
+      out.end(),
+      {
+          {"region", r.region_file.empty() ? "none" : fs::path(r.region_file).filename().string()},
+          {"region_hash", r.region_file.empty() ? "none" : hex64(region_hash)},
+          {"default_height_m", r.read.default_height ? exact(*r.read.default_height) : "none"},
+          {"level_height_m", exact(r.read.level_height)},
+          {"coordinates", coordinates[static_cast<int>(r.read.coordinates)]},
+          {"skip_invalid", r.read.skip_invalid ? "true" : "false"},
+      });
+  return out;
 }
 
 int run_preprocess(const PreprocessRequest& request) {

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "urbanpvs/geometry/Blocks.hpp"
@@ -42,6 +44,11 @@ struct BakeOptions {
   /// Throws std::invalid_argument naming the value to change.
   void validate() const;
 };
+
+/// Every bake option that changes the result, as (key, value) text in a fixed order, numbers as
+/// the shortest text that reads back to the same double. Stored in the output file's properties
+/// (BakeScene::file_header) and part of urbanpvs-preprocess's journal fingerprint.
+std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& options);
 
 class BakeScene {
  public:

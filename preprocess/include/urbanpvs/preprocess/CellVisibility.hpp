@@ -60,6 +60,7 @@ class CellVisibility {
 
   const BakeScene& scene_;
   std::unique_ptr<CellMapRenderer> renderer_;
+  std::vector<const geometry::Occluder*> all_occluders_;  ///< for the brute-force form
   // Per-cell marks, valid where the stamp equals the current cell's (no clearing per cell).
   std::vector<std::uint32_t> object_decided_, occluder_dropped_, object_node_done_,
       occluder_node_done_;
