@@ -5,7 +5,7 @@
 // speed-up, and how the two PVSs compare cell by cell (the hierarchical one must be a superset,
 // at most 2% larger on average). Hierarchical counters show where its time goes.
 //
-//   hierarchical_benchmark [--sizes 1,4,8] [--cells N] [--brute-cells N] [--seed S] [--fine-map PX]
+//   hierarchical_benchmark [--sizes 1,4,8] [--cells N] [--brute-cells N] [--seed S] [--max-map PX]
 //                          [--initial-map PX]
 #include <chrono>
 #include <cstdio>
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   std::vector<double> sizes{1, 4, 8};
   std::size_t cells = 400, brute_cells = 20;
   std::uint64_t seed = 7;
-  int fine_map = preprocess::BakeOptions{}.fine_map;
+  int max_map = preprocess::BakeOptions{}.max_map;
   int initial_map = preprocess::BakeOptions{}.initial_map;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--sizes"))
@@ -64,13 +64,13 @@ int main(int argc, char** argv) {
       brute_cells = std::strtoull(argv[i + 1], nullptr, 10);
     else if (!std::strcmp(argv[i], "--seed"))
       seed = std::strtoull(argv[i + 1], nullptr, 10);
-    else if (!std::strcmp(argv[i], "--fine-map"))
-      fine_map = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--max-map"))
+      max_map = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--initial-map"))
       initial_map = std::atoi(argv[i + 1]);
     else {
       std::fprintf(stderr,
-                   "usage: %s [--sizes 1,4,8] [--cells N] [--brute-cells N] [--seed S] [--fine-map "
+                   "usage: %s [--sizes 1,4,8] [--cells N] [--brute-cells N] [--seed S] [--max-map "
                    "PX] [--initial-map PX]\n",
                    argv[0]);
       return 2;
@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
     const geometry::City city = geometry::read_city_text(
         cities::cityJsonText(cities::generateCity(p)), "generated.city.json");
     preprocess::BakeOptions options;
-    options.fine_map = fine_map;
+    options.max_map = max_map;
     options.initial_map = initial_map;
     const preprocess::BakeScene hier_scene(city, options);
     options.method = preprocess::Method::BruteForce;

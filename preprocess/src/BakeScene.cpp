@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "urbanpvs/preprocess/SampleHorizon.hpp"
+
 namespace urbanpvs::preprocess {
 namespace {
 
@@ -65,7 +67,8 @@ std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptio
       {"backend", o.backend == Backend::Cpu ? "cpu" : "osmesa"},
       {"method", o.method == Method::Hierarchical ? "hierarchical" : "brute-force"},
       {"initial_map_px", std::to_string(o.initial_map)},
-      {"fine_map_px", std::to_string(o.fine_map)},
+      {"max_map_px", std::to_string(o.max_map)},
+      {"horizon_sectors", std::to_string(SampleHorizon::kBins)},
       {"shrink_override_m", exact(o.shrink_override)},
   };
 }
@@ -76,8 +79,8 @@ void BakeOptions::validate() const {
   if (initial_map < 8 || initial_map > 65536)
     throw std::invalid_argument("initial cull-map size " + std::to_string(initial_map) +
                                 " pixels is outside 8 .. 65536");
-  if (fine_map < initial_map || fine_map > 65536)
-    throw std::invalid_argument("fine cull-map size " + std::to_string(fine_map) +
+  if (max_map < initial_map || max_map > 65536)
+    throw std::invalid_argument("largest cull-map size " + std::to_string(max_map) +
                                 " pixels is outside initial_map (" + std::to_string(initial_map) +
                                 ") .. 65536");
   if (!(blocks.gap_tolerance >= 0))

@@ -14,7 +14,6 @@ void render_sample(const Vec3& sample, std::span<const geometry::Occluder* const
   for (const geometry::Occluder* o : occluders)
     geometry::for_each_edge(o->shape, [&](Vec2 a, Vec2 b) {
       auto shadow = occluder_shadow(sample, a, b, o->top_z, clip);
-      if (shadow && map.grid().whole_pixel) shadow = whole_pixel_part(*shadow, map.grid().pixel);
       if (!shadow) return;
       const std::size_t px = rasterize_max(*shadow, map);
       if (stats) ++stats->shadows, stats->pixels_written += px;

@@ -2,9 +2,11 @@
 #include "urbanpvs/preprocess/CellVisibility.hpp"
 
 #include <algorithm>
+#include <tuple>
 
 #include "urbanpvs/preprocess/CullMapHorizon.hpp"
 #include "urbanpvs/preprocess/ObjectTest.hpp"
+#include "urbanpvs/preprocess/SampleHorizon.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
@@ -13,34 +15,25 @@ bool meets(const Box2& a, const Box2& b) {
   return a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y;
 }
 
-// The map of step `step` of the growth: a square around the cell, ×2 per side per step, cut to
-// the scene's area. Up to `fine_map` pixels per side it uses the scene's pixel (the thesis's
-// maps); beyond, the pixel doubles with the side and coverage becomes whole-pixel. Every map is
-// a window of the lattice of its pixel size anchored at the area's origin, so the last one
-// covers the whole area (and, with fine_map large enough, is exactly the brute-force map).
-CullMapGrid window(const CullMapGrid& area, const Box2& cell, int initial_map, int fine_map,
-                   int step, bool* last) {
-  int fine_steps = 0;
-  while ((initial_map << (fine_steps + 1)) <= fine_map) ++fine_steps;
-  const int coarse = std::max(0, step - fine_steps);
-  const double k = area.pixel * static_cast<double>(1 << std::min(coarse, 24));
-  const long long side = static_cast<long long>(initial_map) << std::min(step - coarse, 24);
-  const long long nw = static_cast<long long>(std::ceil(area.width * area.pixel / k - 1e-9));
-  const long long nh = static_cast<long long>(std::ceil(area.height * area.pixel / k - 1e-9));
+// The map of step `step` of the growth: a square of initial_map << step pixels around the
+// cell, cut to the scene's area; a window of the area's pixel lattice, so the last one (when
+// maps may grow that far) is exactly the brute-force map.
+CullMapGrid window(const CullMapGrid& area, const Box2& cell, long long side, bool* last) {
+  const double k = area.pixel;
   const auto ci =
       static_cast<long long>(std::floor((0.5 * (cell.min.x + cell.max.x) - area.origin.x) / k));
   const auto cj =
       static_cast<long long>(std::floor((0.5 * (cell.min.y + cell.max.y) - area.origin.y) / k));
   const long long i0 = std::max(0LL, ci - side / 2), j0 = std::max(0LL, cj - side / 2);
-  const long long i1 = std::min(nw, ci - side / 2 + side), j1 = std::min(nh, cj - side / 2 + side);
+  const long long i1 = std::min<long long>(area.width, ci - side / 2 + side);
+  const long long j1 = std::min<long long>(area.height, cj - side / 2 + side);
   CullMapGrid g;
   g.pixel = k;
-  g.whole_pixel = coarse > 0;
   g.origin = {area.origin.x + static_cast<double>(i0) * k,
               area.origin.y + static_cast<double>(j0) * k};
   g.width = static_cast<int>(std::max(1LL, i1 - i0));
   g.height = static_cast<int>(std::max(1LL, j1 - j0));
-  *last = i0 == 0 && j0 == 0 && i1 == nw && j1 == nh;
+  *last = i0 == 0 && j0 == 0 && i1 == area.width && j1 == area.height;
   return g;
 }
 
@@ -59,6 +52,8 @@ CellCounters& CellCounters::operator+=(const CellCounters& o) {
   objects_in_map += o.objects_in_map;
   objects_behind_horizon += o.objects_behind_horizon;
   nodes_behind_horizon += o.nodes_behind_horizon;
+  objects_far_field += o.objects_far_field;
+  occluders_far_field += o.occluders_far_field;
   shadows += o.shadows;
   pixels_written += o.pixels_written;
   return *this;
@@ -72,7 +67,7 @@ CellVisibility::CellVisibility(const BakeScene& scene)
       occluder_dropped_(scene.occluders().size(), 0),
       object_node_done_(scene.object_index().nodes().size(), 0),
       occluder_node_done_(scene.occluder_index().nodes().size(), 0),
-      object_visible_(scene.city().objects.size(), 0) {}
+      far_visible_(scene.city().objects.size(), 0) {}
 
 CellVisibility::~CellVisibility() = default;
 
@@ -102,10 +97,108 @@ std::vector<std::uint32_t> CellVisibility::brute_force(std::uint32_t cell, CellC
   return visible_objects(map, scene_.city().objects);
 }
 
+// Objects the fine maps left open, decided per sample by a front-to-back sweep over the occluder
+// quadtree with the sample's horizon (SampleHorizon): an object is hidden from the cell when it
+// is hidden from every sample. Nodes and occluders already hidden are skipped whole; the sweep
+// of a sample stops when every open object has been met.
+void CellVisibility::far_field(std::span<const Vec3> samples,
+                               std::span<const std::uint32_t> objects_open, CellCounters& c) {
+  // An object is met at its nearest distance; when its box is not hidden as a whole, again at
+  // its farthest, when every wall in front of any of its pixel centres has been added.
+  enum Kind : std::uint32_t { kNode, kOccluder, kObject, kObjectCentres };
+  using Event = FarEvent;
+  // A min-heap; ties broken by kind and id so the sweep does not depend on the heap's layout.
+  auto later = [](const Event& a, const Event& b) {
+    return std::tie(a.distance, a.kind, a.id) > std::tie(b.distance, b.kind, b.id);
+  };
+  const auto& objects = scene_.city().objects;
+  const BoxQuadtree& tree = scene_.occluder_index();
+  // The brute-force map decides an object by the centres of the pixels its box touches (thesis
+  // 7.2: with ε >= k·√2/2 a pixel centre speaks for the whole pixel). The horizons test the box
+  // through those centres, every point of it, and where that fails the centres themselves:
+  // whatever they hide, that map hides.
+  const CullMapGrid& lattice = scene_.area();
+  auto pixel_of = [&](double v, double origin) {
+    return static_cast<long long>(std::floor((v - origin) / lattice.pixel));
+  };
+  auto centre = [&](long long i, double origin) {
+    return origin + (static_cast<double>(i) + 0.5) * lattice.pixel;
+  };
+  auto centres_box = [&](std::uint32_t o) {
+    geometry::Box3 b = objects[o].bbox;
+    b.xy = {{centre(pixel_of(b.xy.min.x, lattice.origin.x), lattice.origin.x),
+             centre(pixel_of(b.xy.min.y, lattice.origin.y), lattice.origin.y)},
+            {centre(pixel_of(b.xy.max.x, lattice.origin.x), lattice.origin.x),
+             centre(pixel_of(b.xy.max.y, lattice.origin.y), lattice.origin.y)}};
+    return b;
+  };
+  auto points_hidden = [&](const SampleHorizon& h, std::uint32_t o) {
+    const geometry::Box3 b = centres_box(o);
+    far_points_.clear();
+    for (double y = b.xy.min.y; y <= b.xy.max.y + 0.25 * lattice.pixel; y += lattice.pixel)
+      for (double x = b.xy.min.x; x <= b.xy.max.x + 0.25 * lattice.pixel; x += lattice.pixel)
+        far_points_.push_back({x, y});
+    return h.hides_points(far_points_, b.zmax);
+  };
+  auto farthest = [&](const SampleHorizon& h, const geometry::Box2& b) {
+    const double dx = std::max(h.sample().x - b.min.x, b.max.x - h.sample().x);
+    const double dy = std::max(h.sample().y - b.min.y, b.max.y - h.sample().y);
+    return std::hypot(dx, dy);
+  };
+  std::vector<std::uint32_t> open(objects_open.begin(), objects_open.end());
+  c.objects_far_field += open.size();
+  std::vector<Event>& heap = far_events_;
+  for (const Vec3& sample : samples) {
+    if (open.empty() || tree.nodes().empty()) break;
+    SampleHorizon& h = horizon_;
+    h.reset(sample);
+    heap.clear();
+    auto push = [&](double d, Kind kind, std::uint32_t id) {
+      heap.push_back({d, kind, id});
+      std::push_heap(heap.begin(), heap.end(), later);
+    };
+    for (std::uint32_t o : open) push(h.distance_to(centres_box(o).xy), kObject, o);
+    push(h.distance_to(tree.nodes()[0].box.xy), kNode, 0);
+    std::size_t left = open.size();
+    while (left > 0 && !heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), later);
+      const Event e = heap.back();
+      heap.pop_back();
+      if (e.kind == kNode) {
+        const BoxQuadtree::Node& n = tree.nodes()[e.id];
+        if (h.hides(n.box)) continue;
+        for (std::uint32_t k = 0; k < n.count; ++k) {
+          const std::uint32_t o = tree.items()[n.first + k];
+          push(h.distance_to(tree.box(o).xy), kOccluder, o);
+        }
+        for (std::int32_t child : n.child)
+          if (child >= 0)
+            push(h.distance_to(tree.nodes()[static_cast<std::size_t>(child)].box.xy), kNode,
+                 static_cast<std::uint32_t>(child));
+      } else if (e.kind == kOccluder) {
+        if (h.hides(tree.box(e.id))) continue;
+        h.add(scene_.occluders()[e.id]);
+        ++c.occluders_far_field;
+      } else if (e.kind == kObject) {
+        const geometry::Box3 b = centres_box(e.id);
+        if (h.hides(b))
+          --left;
+        else
+          push(farthest(h, b.xy), kObjectCentres, e.id);
+      } else {
+        --left;
+        if (!points_hidden(h, e.id)) far_visible_[e.id] = stamp_;
+      }
+    }
+    std::erase_if(open, [&](std::uint32_t o) { return far_visible_[o] == stamp_; });
+  }
+}
+
 std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, CellCounters& c) {
   // A fresh stamp marks this cell's decisions; the arrays are only cleared when it wraps.
   if (++stamp_ == 0) {
-    for (auto* v : {&object_decided_, &occluder_dropped_, &object_node_done_, &occluder_node_done_})
+    for (auto* v : {&object_decided_, &occluder_dropped_, &object_node_done_, &occluder_node_done_,
+                    &far_visible_})
       std::fill(v->begin(), v->end(), 0u);
     stamp_ = 1;
   }
@@ -120,6 +213,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
   const CullMapGrid& area = scene_.area();
 
   std::vector<std::uint32_t> visible;
+  std::vector<std::uint32_t> pending;
   std::vector<const geometry::Occluder*> render;
   std::optional<CullMap> previous;
   auto decide = [&](std::uint32_t object, bool is_visible) {
@@ -127,10 +221,17 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
     if (is_visible) visible.push_back(object);
   };
 
+  const BakeOptions& options = scene_.options();
   for (int step = 0;; ++step) {
+    const long long side = static_cast<long long>(options.initial_map) << std::min(step, 24);
+    if (side > options.max_map && previous) {
+      // Beyond the largest map the sample horizons decide what is still open.
+      far_field(samples, pending, c);
+      for (std::uint32_t o : pending) decide(o, far_visible_[o] == stamp_);
+      break;
+    }
     bool last = false;
-    const CullMapGrid grid =
-        window(area, box.xy, scene_.options().initial_map, scene_.options().fine_map, step, &last);
+    const CullMapGrid grid = window(area, box.xy, side, &last);
     if (!last && !inside_map(grid, box.xy.grown(area.pixel))) continue;  // cell larger than map
     const Box2 bounds = grid.bounds();
 
@@ -183,7 +284,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
 
     // Objects: inside the map decided by its heights (final: nothing outside the map casts a
     // shadow into it), outside it by the horizon; the rest waits for a larger map.
-    bool pending = false;
+    pending.clear();
     object_tree.visit(
         [&](std::uint32_t id, const BoxQuadtree::Node& n) {
           if (object_node_done_[id] == stamp_) return false;
@@ -209,11 +310,11 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
             decide(o, false);
             ++c.objects_behind_horizon;
           } else {
-            pending = true;
+            pending.push_back(o);
           }
         });
     if (last) break;
-    if (!pending) {
+    if (pending.empty()) {
       ++c.early_breaks;
       break;
     }

@@ -84,33 +84,4 @@ std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b
   return s;
 }
 
-std::optional<OccluderShadow> whole_pixel_part(const OccluderShadow& shadow, double pixel,
-                                               double slack) {
-  // A square of half-side h lies in the half-plane left of p→q (unit left normal n) iff its
-  // centre lies at least h·(|n.x| + |n.y|) inside: erode each edge by that, by clipping.
-  const double h = pixel * (0.5 + slack);
-  const ShadowPolygon& poly = shadow.polygon;
-  ShadowPolygon out = poly;
-  for (std::size_t i = 0; i < poly.size() && out.size() >= 3; ++i) {
-    const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
-    const Vec2 d = q - p;
-    const double len = std::hypot(d.x, d.y);
-    if (!(len > 0)) continue;
-    const Vec2 n{-d.y / len, d.x / len};
-    const double inset = h * (std::abs(n.x) + std::abs(n.y));
-    auto depth = [&](Vec2 v) { return n.x * (v.x - p.x) + n.y * (v.y - p.y) - inset; };
-    out = clip_half_plane(
-        out, [&](Vec2 v) { return depth(v) >= 0; },
-        [&](Vec2 u, Vec2 v) {
-          const double du = depth(u), dv = depth(v);
-          return u + (du / (du - dv)) * (v - u);
-        });
-  }
-  if (out.size() < 3 || !(signed_area2(out) > 0)) return std::nullopt;
-  OccluderShadow s = shadow;
-  s.polygon = std::move(out);
-  s.c -= 0.5 * pixel * (std::abs(s.a) + std::abs(s.b));
-  return s;
-}
-
 }  // namespace urbanpvs::preprocess

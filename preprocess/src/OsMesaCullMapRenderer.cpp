@@ -77,9 +77,19 @@ struct OsMesaCullMapRenderer::Context {
 };
 
 OsMesaCullMapRenderer::OsMesaCullMapRenderer() : gl_(std::make_unique<Context>()) {
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
-                         OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                         OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         24,
+                         OSMESA_STENCIL_BITS,
+                         8,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         4,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         5,
+                         0};
   gl_->context = OSMesaCreateContextAttribs(attribs, nullptr);
   if (!gl_->context) throw std::runtime_error("OSMesa cull maps: no OpenGL 4.5 core context");
   if (!OSMesaMakeCurrent(gl_->context, gl_->window.data(), GL_UNSIGNED_BYTE, 4, 4))
@@ -137,8 +147,6 @@ CullMap OsMesaCullMapRenderer::cell_cull_map(const CullMapGrid& grid, std::span<
     for (const geometry::Occluder* o : occluders)
       geometry::for_each_edge(o->shape, [&](Vec2 a, Vec2 b) {
         auto s = occluder_shadow(sample, a, b, o->top_z, clip);
-        // llvmpipe snaps vertices to 1/256 pixel: erode by that much more (1/128 for margin).
-        if (s && grid.whole_pixel) s = whole_pixel_part(*s, grid.pixel, 1.0 / 128);
         if (!s) return;
         if (stats) ++stats->shadows;
         // depth(i + 0.5, j + 0.5) = (height(origin + k·(i + 0.5, j + 0.5)) - zlo) / range
@@ -187,7 +195,8 @@ CullMap OsMesaCullMapRenderer::cell_cull_map(const CullMapGrid& grid, std::span<
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_ALWAYS);
     const std::vector<float> saved = triangles;
-    const float w = static_cast<float>(grid.width * grid.pixel), h = static_cast<float>(grid.height * grid.pixel);
+    const float w = static_cast<float>(grid.width * grid.pixel),
+                h = static_cast<float>(grid.height * grid.pixel);
     triangles = {0, 0, 0, 0, 0, w, 0, 0, 0, 0, w, h, 0, 0, 0,
                  0, 0, 0, 0, 0, w, h, 0, 0, 0, 0, h, 0, 0, 0};
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(triangles.size() * sizeof(float)),
@@ -201,14 +210,16 @@ CullMap OsMesaCullMapRenderer::cell_cull_map(const CullMapGrid& grid, std::span<
   }
   glDisable(GL_STENCIL_TEST);
 
-  std::vector<float> depth(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
+  std::vector<float> depth(static_cast<std::size_t>(grid.width) *
+                           static_cast<std::size_t>(grid.height));
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, grid.width, grid.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
   CullMap map(grid);
   std::vector<float>& z = map.values();
   for (std::size_t k = 0; k < z.size(); ++k)
-    z[k] = depth[k] <= 0 ? CullMap::kNothingHidden
-                         : float_below(zlo + (static_cast<double>(depth[k]) - kDepthMargin) * range);
+    z[k] = depth[k] <= 0
+               ? CullMap::kNothingHidden
+               : float_below(zlo + (static_cast<double>(depth[k]) - kDepthMargin) * range);
   return map;
 }
 

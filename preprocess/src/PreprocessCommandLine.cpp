@@ -132,10 +132,10 @@ void apply_config(const std::string& path, CLI::App& app, PreprocessRequest& r, 
            r.bake.initial_map =
                static_cast<int>(std::clamp<std::int64_t>(value.get<std::int64_t>(), -1, 1 << 30));
          }},
-        {"fine-map",
+        {"max-map",
          [&] {
            if (!value.is_number_integer()) throw wrong("an integer");
-           r.bake.fine_map =
+           r.bake.max_map =
                static_cast<int>(std::clamp<std::int64_t>(value.get<std::int64_t>(), -1, 1 << 30));
          }},
         {"report", [&] { r.report_file = relative_to_config(text_value()); }},
@@ -255,10 +255,9 @@ std::optional<int> parse_preprocess_command_line(int argc, const char* const* ar
                  "Side of the hierarchical test's first cull map, in pixels (8 .. 65536)")
       ->type_name("PIXELS")
       ->capture_default_str();
-  app.add_option("--fine-map", r.bake.fine_map,
-                 "Largest cull map at the fine pixel size, in pixels; larger maps double their "
-                 "pixel size instead, with whole-pixel coverage (faster, less tight far away; "
-                 "65536: the thesis's single pixel size)")
+  app.add_option("--max-map", r.bake.max_map,
+                 "Largest cull map, in pixels (initial-map .. 65536); beyond it the samples' "
+                 "horizons decide (65536: cull maps alone, grown to cover the city)")
       ->type_name("PIXELS")
       ->capture_default_str();
   app.add_option("--report", r.report_file,

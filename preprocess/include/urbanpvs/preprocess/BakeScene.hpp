@@ -32,11 +32,11 @@ struct BakeOptions {
   Method method = Method::Hierarchical;
   /// Side of the first cull map of the hierarchical test [Units: pixels] [Limit: 8 .. 65536]
   int initial_map = 128;
-  /// Largest map side at the fine pixel size [Units: pixels] [Limit: initial_map .. 65536].
-  /// Larger maps keep this many pixels and double their pixel size instead, with whole-pixel
-  /// coverage (CullMapGrid::whole_pixel), which is conservative at any pixel size: far from the
-  /// cell the test gets coarser, not wrong. 65536 keeps the thesis's single pixel size.
-  int fine_map = 256;
+  /// Largest cull map side [Units: pixels] [Limit: initial_map .. 65536]. Maps grow ×2 up to
+  /// it; what is still undecided beyond it is decided by the samples' horizons (SampleHorizon),
+  /// which cost far less than large maps and lose almost nothing against them. 65536: maps
+  /// alone, grown until they cover the city (the thesis's form).
+  int max_map = 128;
   /// Occluders are shrunk by this instead of cells.epsilon. Only for tests that must show a
   /// broken bake is caught (urbanpvs-validate); never set it otherwise. [Units: m]
   double shrink_override = -1;

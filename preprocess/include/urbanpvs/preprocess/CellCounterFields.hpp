@@ -12,7 +12,7 @@
 
 namespace urbanpvs::preprocess {
 
-inline constexpr std::array<std::pair<const char*, std::uint64_t CellCounters::*>, 14>
+inline constexpr std::array<std::pair<const char*, std::uint64_t CellCounters::*>, 16>
     kCellCounterFields = {{
         {"cells", &CellCounters::cells},
         {"maps", &CellCounters::maps},
@@ -26,6 +26,8 @@ inline constexpr std::array<std::pair<const char*, std::uint64_t CellCounters::*
         {"objects_in_map", &CellCounters::objects_in_map},
         {"objects_behind_horizon", &CellCounters::objects_behind_horizon},
         {"nodes_behind_horizon", &CellCounters::nodes_behind_horizon},
+        {"objects_far_field", &CellCounters::objects_far_field},
+        {"occluders_far_field", &CellCounters::occluders_far_field},
         {"shadows", &CellCounters::shadows},
         {"pixels_written", &CellCounters::pixels_written},
     }};

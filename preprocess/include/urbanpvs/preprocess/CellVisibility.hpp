@@ -14,10 +14,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "urbanpvs/preprocess/BakeScene.hpp"
 #include "urbanpvs/preprocess/CellMapRenderer.hpp"
+#include "urbanpvs/preprocess/SampleHorizon.hpp"
 
 namespace urbanpvs::preprocess {
 
@@ -35,6 +37,8 @@ struct CellCounters {
   std::uint64_t objects_in_map = 0;            ///< objects decided by the map's heights
   std::uint64_t objects_behind_horizon = 0;    ///< objects hidden by the horizon
   std::uint64_t nodes_behind_horizon = 0;      ///< quadtree nodes rejected whole
+  std::uint64_t objects_far_field = 0;         ///< objects left to the sample horizons
+  std::uint64_t occluders_far_field = 0;       ///< occluders added to them (over samples)
   std::uint64_t shadows = 0;                   ///< shadow polygons rasterized
   std::uint64_t pixels_written = 0;            ///< by the CPU rasterizer
 
@@ -57,14 +61,22 @@ class CellVisibility {
  private:
   std::vector<std::uint32_t> hierarchical(std::uint32_t cell, CellCounters& counters);
   std::vector<std::uint32_t> brute_force(std::uint32_t cell, CellCounters& counters);
+  void far_field(std::span<const Vec3> samples, std::span<const std::uint32_t> objects_open,
+                 CellCounters& counters);
 
   const BakeScene& scene_;
   std::unique_ptr<CellMapRenderer> renderer_;
   std::vector<const geometry::Occluder*> all_occluders_;  ///< for the brute-force form
   // Per-cell marks, valid where the stamp equals the current cell's (no clearing per cell).
   std::vector<std::uint32_t> object_decided_, occluder_dropped_, object_node_done_,
-      occluder_node_done_;
-  std::vector<std::uint8_t> object_visible_;
+      occluder_node_done_, far_visible_;
+  SampleHorizon horizon_;
+  struct FarEvent {  ///< far_field's sweep: a node, occluder or object at its distance
+    double distance;
+    std::uint32_t kind, id;
+  };
+  std::vector<FarEvent> far_events_;
+  std::vector<Vec2> far_points_;
   std::uint32_t stamp_ = 0;
 };
 

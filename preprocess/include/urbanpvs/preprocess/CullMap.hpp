@@ -41,12 +41,6 @@ struct CullMapGrid {
   double pixel = 1;
   int width = 0;
   int height = 0;
-  /// Whole-pixel coverage: a shadow writes a pixel only where it covers the pixel's whole
-  /// square, with its lowest height over the square. Then every value holds over its whole pixel
-  /// from the sample itself, whatever the pixel size, and the ε coupling is not needed. The
-  /// hierarchical test uses it for the coarse maps far from the cell (pixels larger than
-  /// CullMapSettings::max_pixel(ε)); pixel-centre sampling (false) is the thesis's rule.
-  bool whole_pixel = false;
 
   Vec2 center(int i, int j) const {
     return {origin.x + (i + 0.5) * pixel, origin.y + (j + 0.5) * pixel};

@@ -23,16 +23,17 @@ struct Vec3 {
 
 /// A convex polygon of a shadow, stored inline: shadows are made by the ten thousand per cell
 /// and must not touch the heap. Clipping a convex polygon by a half-plane adds at most one
-/// corner: a wedge has 6, the clip box adds at most 4, whole-pixel erosion one per edge: <= 20.
+/// corner: a wedge has 6, the clip box adds at most 4: <= 10.
 class ShadowPolygon {
  public:
-  static constexpr std::size_t kCapacity = 32;
+  static constexpr std::size_t kCapacity = 16;
   ShadowPolygon() = default;
   ShadowPolygon(std::initializer_list<Vec2> corners) {
     for (Vec2 c : corners) push_back(c);
   }
   void push_back(Vec2 c) {
-    if (size_ == kCapacity) throw std::logic_error("ShadowPolygon: more corners than convex allows");
+    if (size_ == kCapacity)
+      throw std::logic_error("ShadowPolygon: more corners than convex allows");
     corners_[size_++] = c;
   }
   std::size_t size() const { return size_; }
@@ -50,7 +51,7 @@ class ShadowPolygon {
 };
 
 struct OccluderShadow {
-  ShadowPolygon polygon;  ///< convex, counter-clockwise, clipped to the requested box
+  ShadowPolygon polygon;       ///< convex, counter-clockwise, clipped to the requested box
   double a = 0, b = 0, c = 0;  ///< height over the ground: z = a·x + b·y + c
 
   double height(Vec2 p) const { return a * p.x + b * p.y + c; }
@@ -68,12 +69,5 @@ inline bool faces(Vec2 a, Vec2 b, const Vec3& sample) {
 /// when the edge does not face the sample or the wedge misses `clip`.
 std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b, double top,
                                               const Box2& clip);
-
-/// The part of `shadow` that holds over whole pixels of size `pixel`: the polygon eroded by the
-/// pixel's square (a pixel centre inside the result means the whole pixel lies inside the shadow)
-/// and the height lowered to its minimum over the square. `slack` (in pixels) erodes further,
-/// for rasterizers that snap vertices. Nothing when the eroded polygon is empty.
-std::optional<OccluderShadow> whole_pixel_part(const OccluderShadow& shadow, double pixel,
-                                               double slack = 0);
 
 }  // namespace urbanpvs::preprocess
