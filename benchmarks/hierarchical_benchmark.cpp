@@ -110,7 +110,13 @@ int main(int argc, char** argv) {
       const std::vector<std::uint32_t> b = brute.pvs(timed[k]);
       const std::vector<std::uint32_t>& h = hier_pvs[k];
       ++compared;
-      if (!std::includes(h.begin(), h.end(), b.begin(), b.end())) ++not_superset;
+      if (!std::includes(h.begin(), h.end(), b.begin(), b.end())) {
+        ++not_superset;
+        std::vector<std::uint32_t> missing;
+        std::set_difference(b.begin(), b.end(), h.begin(), h.end(), std::back_inserter(missing));
+        for (std::uint32_t o : missing)
+          std::printf("       not a superset: cell %u misses object %u\n", timed[k], o);
+      }
       extra += double(h.size()) - double(b.size());
       brute_total += double(b.size());
     }
@@ -128,14 +134,16 @@ int main(int argc, char** argv) {
     std::printf(
         "       per cell: occluders considered %.1f occluded %.1f behind-horizon %.1f; "
         "objects in map %.1f behind-horizon %.1f; nodes rejected %.1f; shadows %.0f; "
-        "pixels %.0f\n",
+        "pixels %.0f; far field: objects %.1f, occluders added %.1f (all samples)\n",
         double(hc.occluders_considered) / double(hc.cells),
         double(hc.occluders_occluded) / double(hc.cells),
         double(hc.occluders_behind_horizon) / double(hc.cells),
         double(hc.objects_in_map) / double(hc.cells),
         double(hc.objects_behind_horizon) / double(hc.cells),
         double(hc.nodes_behind_horizon) / double(hc.cells), double(hc.shadows) / double(hc.cells),
-        double(hc.pixels_written) / double(hc.cells));
+        double(hc.pixels_written) / double(hc.cells),
+        double(hc.objects_far_field) / double(hc.cells),
+        double(hc.occluders_far_field) / double(hc.cells));
     std::fflush(stdout);
   }
   return 0;

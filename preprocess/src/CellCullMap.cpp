@@ -2,6 +2,7 @@
 #include "urbanpvs/preprocess/CellCullMap.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include "urbanpvs/preprocess/CpuRasterizer.hpp"
 #include "urbanpvs/preprocess/ObjectTest.hpp"
@@ -58,16 +59,42 @@ void render_sample_front_to_back(const Vec3& sample,
   }
 }
 
+void render_sample_unhidden(const Vec3& sample,
+                            std::span<const geometry::Occluder* const> occluders, CullMap& map,
+                            SampleHorizon& horizon, CullMapStats* stats) {
+  horizon.reset(sample);
+  std::vector<std::pair<double, const geometry::Occluder*>> order;
+  order.reserve(occluders.size());
+  for (const geometry::Occluder* o : occluders) order.emplace_back(horizon.distance_to(o->bounds), o);
+  // Ties broken by the pointer (the scene's occluder order): deterministic.
+  std::sort(order.begin(), order.end());
+  for (const auto& [d, o] : order) {
+    geometry::Box3 box;
+    box.xy = o->bounds;
+    box.zmin = box.zmax = o->top_z;
+    if (horizon.hides(box)) {
+      if (stats) ++stats->occluders_skipped;
+      continue;
+    }
+    render_sample(sample, std::span<const geometry::Occluder* const>(&o, 1), map, stats);
+    horizon.add(*o);
+  }
+}
+
 CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
                       std::span<const geometry::Occluder* const> occluders, CullMapStats* stats,
-                      bool front_to_back) {
+                      OccluderSkipping skipping) {
   CullMap cell(grid);
   if (samples.empty()) return cell;
   CullMap one(grid);
+  std::unique_ptr<SampleHorizon> horizon;
+  if (skipping == OccluderSkipping::BehindHorizon) horizon = std::make_unique<SampleHorizon>();
   for (std::size_t s = 0; s < samples.size(); ++s) {
     one.fill(CullMap::kNothingHidden);
-    if (front_to_back)
+    if (skipping == OccluderSkipping::HiddenInMap)
       render_sample_front_to_back(samples[s], occluders, one, stats);
+    else if (skipping == OccluderSkipping::BehindHorizon)
+      render_sample_unhidden(samples[s], occluders, one, *horizon, stats);
     else
       render_sample(samples[s], occluders, one, stats);
     if (s == 0) {

@@ -8,11 +8,15 @@ namespace {
 
 class CpuCellMapRenderer final : public CellMapRenderer {
  public:
+  explicit CpuCellMapRenderer(OccluderSkipping skipping) : skipping_(skipping) {}
   CullMap render(const CullMapGrid& grid, std::span<const Vec3> samples,
                  std::span<const geometry::Occluder* const> occluders,
                  CullMapStats* stats) override {
-    return cell_cull_map(grid, samples, occluders, stats, /*front_to_back=*/true);
+    return cell_cull_map(grid, samples, occluders, stats, skipping_);
   }
+
+ private:
+  OccluderSkipping skipping_;
 };
 
 class OsMesaCellMapRenderer final : public CellMapRenderer {
@@ -31,9 +35,10 @@ class OsMesaCellMapRenderer final : public CellMapRenderer {
 
 }  // namespace
 
-std::unique_ptr<CellMapRenderer> make_cell_map_renderer(Backend backend, double zlo, double zhi) {
+std::unique_ptr<CellMapRenderer> make_cell_map_renderer(Backend backend, double zlo, double zhi,
+                                                        OccluderSkipping skipping) {
   if (backend == Backend::OsMesa) return std::make_unique<OsMesaCellMapRenderer>(zlo, zhi);
-  return std::make_unique<CpuCellMapRenderer>();
+  return std::make_unique<CpuCellMapRenderer>(skipping);
 }
 
 }  // namespace urbanpvs::preprocess

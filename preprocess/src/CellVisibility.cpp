@@ -61,13 +61,19 @@ CellCounters& CellCounters::operator+=(const CellCounters& o) {
 
 CellVisibility::CellVisibility(const BakeScene& scene)
     : scene_(scene),
-      renderer_(make_cell_map_renderer(scene.options().backend, scene.zlo(), scene.zhi())),
+      // The brute-force reference draws the map of every occluder: skipping only those that
+      // provably add nothing keeps it exactly that map, in a fraction of the time.
+      renderer_(make_cell_map_renderer(scene.options().backend, scene.zlo(), scene.zhi(),
+                                       scene.options().method == Method::Hierarchical
+                                           ? OccluderSkipping::HiddenInMap
+                                           : OccluderSkipping::BehindHorizon)),
       all_occluders_(pointers_to(scene.occluders())),
       object_decided_(scene.city().objects.size(), 0),
       occluder_dropped_(scene.occluders().size(), 0),
       object_node_done_(scene.object_index().nodes().size(), 0),
       occluder_node_done_(scene.occluder_index().nodes().size(), 0),
-      far_visible_(scene.city().objects.size(), 0) {}
+      far_visible_(scene.city().objects.size(), 0),
+      far_open_(scene.city().objects.size(), 0) {}
 
 CellVisibility::~CellVisibility() = default;
 
@@ -105,7 +111,7 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
                                std::span<const std::uint32_t> objects_open, CellCounters& c) {
   // An object is met at its nearest distance; when its box is not hidden as a whole, again at
   // its farthest, when every wall in front of any of its pixel centres has been added.
-  enum Kind : std::uint32_t { kNode, kOccluder, kObject, kObjectCentres };
+  enum Kind : std::uint32_t { kNode, kOccluder, kObjectNode, kObject, kObjectCentres };
   using Event = FarEvent;
   // A min-heap; ties broken by kind and id so the sweep does not depend on the heap's layout.
   auto later = [](const Event& a, const Event& b) {
@@ -145,25 +151,51 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
     const double dy = std::max(h.sample().y - b.min.y, b.max.y - h.sample().y);
     return std::hypot(dx, dy);
   };
-  std::vector<std::uint32_t> open(objects_open.begin(), objects_open.end());
-  c.objects_far_field += open.size();
+  // Open objects per node of the object quadtree, so whole districts are tested at once.
+  const BoxQuadtree& object_tree = scene_.object_index();
+  for (std::uint32_t o : objects_open) far_open_[o] = stamp_;
+  std::size_t open = objects_open.size();
+  c.objects_far_field += open;
+  const auto& nodes = object_tree.nodes();
+  open_below_.assign(nodes.size(), 0);
+  for (std::size_t id = nodes.size(); id-- > 0;) {  // children come after their parent
+    const BoxQuadtree::Node& n = nodes[id];
+    std::uint32_t count = 0;
+    for (std::uint32_t k = 0; k < n.count; ++k)
+      count += far_open_[object_tree.items()[n.first + k]] == stamp_ ? 1 : 0;
+    for (std::int32_t child : n.child)
+      if (child >= 0) count += open_below_[static_cast<std::size_t>(child)];
+    open_below_[id] = count;
+  }
+  // A node's box holds its objects' boxes; grown by half a pixel it holds their centre boxes.
+  auto node_box = [&](std::uint32_t id) {
+    geometry::Box3 b = nodes[id].box;
+    b.xy = b.xy.grown(0.5 * lattice.pixel * (1 + 1e-9));
+    return b;
+  };
+  auto still_open = [&](std::uint32_t o) {
+    return far_open_[o] == stamp_ && far_visible_[o] != stamp_;
+  };
+
   std::vector<Event>& heap = far_events_;
   for (const Vec3& sample : samples) {
-    if (open.empty() || tree.nodes().empty()) break;
+    if (open == 0 || tree.nodes().empty() || nodes.empty()) break;
     SampleHorizon& h = horizon_;
     h.reset(sample);
     heap.clear();
+    std::size_t object_events = 0;  // the sweep stops when no object is left to meet
     auto push = [&](double d, Kind kind, std::uint32_t id) {
       heap.push_back({d, kind, id});
       std::push_heap(heap.begin(), heap.end(), later);
+      if (kind != kNode && kind != kOccluder) ++object_events;
     };
-    for (std::uint32_t o : open) push(h.distance_to(centres_box(o).xy), kObject, o);
+    push(h.distance_to(node_box(0).xy), kObjectNode, 0);
     push(h.distance_to(tree.nodes()[0].box.xy), kNode, 0);
-    std::size_t left = open.size();
-    while (left > 0 && !heap.empty()) {
+    while (object_events > 0 && !heap.empty()) {
       std::pop_heap(heap.begin(), heap.end(), later);
       const Event e = heap.back();
       heap.pop_back();
+      if (e.kind != kNode && e.kind != kOccluder) --object_events;
       if (e.kind == kNode) {
         const BoxQuadtree::Node& n = tree.nodes()[e.id];
         if (h.hides(n.box)) continue;
@@ -179,18 +211,25 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
         if (h.hides(tree.box(e.id))) continue;
         h.add(scene_.occluders()[e.id]);
         ++c.occluders_far_field;
+      } else if (e.kind == kObjectNode) {
+        if (open_below_[e.id] == 0 || h.hides(node_box(e.id))) continue;
+        const BoxQuadtree::Node& n = nodes[e.id];
+        for (std::uint32_t k = 0; k < n.count; ++k) {
+          const std::uint32_t o = object_tree.items()[n.first + k];
+          if (still_open(o)) push(h.distance_to(centres_box(o).xy), kObject, o);
+        }
+        for (std::int32_t child : n.child)
+          if (child >= 0 && open_below_[static_cast<std::size_t>(child)] > 0)
+            push(h.distance_to(node_box(static_cast<std::uint32_t>(child)).xy), kObjectNode,
+                 static_cast<std::uint32_t>(child));
       } else if (e.kind == kObject) {
         const geometry::Box3 b = centres_box(e.id);
-        if (h.hides(b))
-          --left;
-        else
-          push(farthest(h, b.xy), kObjectCentres, e.id);
-      } else {
-        --left;
-        if (!points_hidden(h, e.id)) far_visible_[e.id] = stamp_;
+        if (!h.hides(b)) push(farthest(h, b.xy), kObjectCentres, e.id);
+      } else if (!points_hidden(h, e.id)) {
+        far_visible_[e.id] = stamp_;
+        --open;
       }
     }
-    std::erase_if(open, [&](std::uint32_t o) { return far_visible_[o] == stamp_; });
   }
 }
 
@@ -198,7 +237,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
   // A fresh stamp marks this cell's decisions; the arrays are only cleared when it wraps.
   if (++stamp_ == 0) {
     for (auto* v : {&object_decided_, &occluder_dropped_, &object_node_done_, &occluder_node_done_,
-                    &far_visible_})
+                    &far_visible_, &far_open_})
       std::fill(v->begin(), v->end(), 0u);
     stamp_ = 1;
   }

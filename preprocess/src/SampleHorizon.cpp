@@ -242,13 +242,19 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     const double a_hi = std::max(angle(k), angle(k + 1));
     const auto u0 = std::max(t0, static_cast<long long>(std::floor(a_lo / kSector)));
     const auto u1 = std::min(t1, static_cast<long long>(std::floor(a_hi / kSector)));
+    if (u1 < u0) continue;
+    // Sector t spans [from, to] of this wall; `to` of one sector is `from` of the next.
+    double at_from = along(static_cast<double>(u0) * kSector < a_lo ? direction(a_lo) : border(u0));
+    auto b = static_cast<std::size_t>(bin_of(u0));
     for (long long t = u0; t <= u1; ++t) {
-      const auto b = static_cast<std::size_t>(bin_of(t));
-      if (sector_mark_[b] == skip_mark) continue;
-      const Vec2 from = static_cast<double>(t) * kSector < a_lo ? direction(a_lo) : border(t);
-      const Vec2 to = static_cast<double>(t + 1) * kSector > a_hi ? direction(a_hi) : border(t + 1);
-      if (reach_[b] == 0) touched_.push_back(static_cast<int>(b));
-      reach_[b] = std::max({reach_[b], along(from), along(to), 1e-300});
+      const double at_to =
+          along(static_cast<double>(t + 1) * kSector > a_hi ? direction(a_hi) : border(t + 1));
+      if (sector_mark_[b] != skip_mark) {
+        if (reach_[b] == 0) touched_.push_back(static_cast<int>(b));
+        reach_[b] = std::max({reach_[b], at_from, at_to, 1e-300});
+      }
+      at_from = at_to;
+      b = b + 1 == static_cast<std::size_t>(kBins) ? 0 : b + 1;
     }
   }
   const double rise = top - sample_.z;
@@ -315,6 +321,7 @@ void SampleHorizon::add_ring(const geometry::Ring& ring, double top, bool hole) 
   for (std::size_t k = 0; k < n && start == n; ++k)
     if (facing(k) && !facing(k + n - 1)) start = k;
   if (start == n) start = 0;
+  int runs = 0;
   for (std::size_t k = start; k < start + n;) {
     if (!facing(k)) {
       ++k;
@@ -322,12 +329,14 @@ void SampleHorizon::add_ring(const geometry::Ring& ring, double top, bool hole) 
     }
     const std::size_t first = k;
     while (k < start + n && facing(k)) ++k;
+    ++runs;
     const double a = angle(first), b = angle(k);
     long long t0, t1;
     if (inner_sectors(std::min(a, b), std::max(a, b), &t0, &t1))
       close_sectors(ring, first, k - 1, angle, t0, t1, top, kNoMark, by_run);
   }
-  if (around) return;  // the run around the sample closed everything
+  // The run around the sample closed everything; a single run spans the ring's whole extent.
+  if (around || runs <= 1) return;
   const auto [lo, hi] = std::minmax_element(angle_.begin(), angle_.end());
   long long t0, t1;
   if (inner_sectors(*lo, *hi, &t0, &t1))

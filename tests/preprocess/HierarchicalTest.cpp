@@ -11,6 +11,7 @@
 #include "urbanpvs/cities/cityjson_writer.hpp"
 #include "urbanpvs/geometry/CityReader.hpp"
 #include "urbanpvs/preprocess/BakeScene.hpp"
+#include "urbanpvs/preprocess/CellCullMap.hpp"
 #include "urbanpvs/preprocess/CellVisibility.hpp"
 #include "urbanpvs/preprocess/CullMapHorizon.hpp"
 #include "urbanpvs/preprocess/SpatialIndex.hpp"
@@ -105,6 +106,28 @@ TEST(Hierarchical, SampleHorizonsAloneStayASupersetOfTheBruteForcePvs) {
   EXPECT_LE(c.hierarchical, 1.05 * c.brute);
   std::printf("16-pixel map: mean PVS hierarchical %.2f brute force %.2f\n",
               c.hierarchical / double(c.cells), c.brute / double(c.cells));
+}
+
+TEST(BruteForce, SkippingOccludersBehindTheSampleHorizonKeepsTheMapOfEveryOccluder) {
+  const BakeScene scene(small_city(), BakeOptions{});
+  const std::vector<const geometry::Occluder*> all = pointers_to(scene.occluders());
+  std::size_t skipped = 0;
+  for (std::uint32_t cell : {0u, static_cast<std::uint32_t>(scene.cell_count() / 3),
+                             static_cast<std::uint32_t>(2 * scene.cell_count() / 3)}) {
+    const std::vector<Vec3> samples = scene.samples(cell);
+    CullMapStats every, behind, in_map;
+    const CullMap reference = cell_cull_map(scene.area(), samples, all, &every);
+    const CullMap exact =
+        cell_cull_map(scene.area(), samples, all, &behind, OccluderSkipping::BehindHorizon);
+    const CullMap quick =
+        cell_cull_map(scene.area(), samples, all, &in_map, OccluderSkipping::HiddenInMap);
+    EXPECT_EQ(exact.values(), reference.values()) << "cell " << cell;
+    for (std::size_t k = 0; k < reference.values().size(); ++k)
+      ASSERT_LE(quick.values()[k], reference.values()[k]) << "cell " << cell << " pixel " << k;
+    EXPECT_LT(behind.shadows, every.shadows);
+    skipped += behind.occluders_skipped;
+  }
+  EXPECT_GT(skipped, 0u);
 }
 
 TEST(Hierarchical, SameCellSameAnswerWhateverCameBefore) {

@@ -13,13 +13,22 @@
 #include "urbanpvs/geometry/Occluder.hpp"
 #include "urbanpvs/preprocess/CullMap.hpp"
 #include "urbanpvs/preprocess/OccluderShadow.hpp"
+#include "urbanpvs/preprocess/SampleHorizon.hpp"
 
 namespace urbanpvs::preprocess {
 
 struct CullMapStats {
   std::size_t shadows = 0;            ///< shadow polygons rasterized
   std::size_t pixels_written = 0;     ///< pixel centres covered, summed over shadows
-  std::size_t occluders_skipped = 0;  ///< hidden from a sample (front-to-back only)
+  std::size_t occluders_skipped = 0;  ///< hidden from a sample (front to back only)
+};
+
+/// Which occluders a sample's pass may leave out, drawing front to back (thesis 5.6.1: occluded
+/// occluders add nothing). Every choice stays conservative.
+enum class OccluderSkipping {
+  None,            ///< draw every occluder: the brute-force map by definition
+  HiddenInMap,     ///< skip those hidden in the sample's map so far (render_sample_front_to_back)
+  BehindHorizon,   ///< skip those the sample's horizon hides (render_sample_unhidden): same map
 };
 
 /// Writes the max over all occluder shadows seen from `sample` into `map` (which the caller
@@ -35,11 +44,21 @@ void render_sample_front_to_back(const Vec3& sample,
                                  std::span<const geometry::Occluder* const> occluders, CullMap& map,
                                  CullMapStats* stats = nullptr);
 
+/// The same map as render_sample, nearest occluders first, leaving out every occluder that the
+/// sample's horizon (SampleHorizon, over the occluders drawn so far) proves hidden at its top:
+/// along every sight line through its walls a drawn wall is crossed first and rises faster, so
+/// its shadow lies under theirs at every point, pixel centres included. Exact where
+/// render_sample_front_to_back, which judges by pixel centres, can lose a shadow.
+void render_sample_unhidden(const Vec3& sample,
+                            std::span<const geometry::Occluder* const> occluders, CullMap& map,
+                            SampleHorizon& horizon, CullMapStats* stats = nullptr);
+
 /// The merged cull map of a cell from its samples (min over samples of the per-sample max).
 /// No samples: nothing is hidden.
 CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
                       std::span<const geometry::Occluder* const> occluders,
-                      CullMapStats* stats = nullptr, bool front_to_back = false);
+                      CullMapStats* stats = nullptr,
+                      OccluderSkipping skipping = OccluderSkipping::None);
 /// The same over every occluder of a list.
 CullMap cell_cull_map(const CullMapGrid& grid, std::span<const Vec3> samples,
                       std::span<const geometry::Occluder> occluders, CullMapStats* stats = nullptr);

@@ -25,7 +25,10 @@ class CellMapRenderer {
 
 /// One renderer per thread (the OpenGL one owns a context). Heights are expected in [zlo, zhi]:
 /// zlo below every object, zhi above every occluder (only the OpenGL backend uses them, to map
-/// heights to depth). Throws std::runtime_error when the backend is not available.
-std::unique_ptr<CellMapRenderer> make_cell_map_renderer(Backend backend, double zlo, double zhi);
+/// heights to depth). `skipping` applies to the CPU renderer (OpenGL draws every occluder).
+/// Throws std::runtime_error when the backend is not available.
+std::unique_ptr<CellMapRenderer> make_cell_map_renderer(
+    Backend backend, double zlo, double zhi,
+    OccluderSkipping skipping = OccluderSkipping::HiddenInMap);
 
 }  // namespace urbanpvs::preprocess

@@ -69,7 +69,7 @@ class CellVisibility {
   std::vector<const geometry::Occluder*> all_occluders_;  ///< for the brute-force form
   // Per-cell marks, valid where the stamp equals the current cell's (no clearing per cell).
   std::vector<std::uint32_t> object_decided_, occluder_dropped_, object_node_done_,
-      occluder_node_done_, far_visible_;
+      occluder_node_done_, far_visible_, far_open_;
   SampleHorizon horizon_;
   struct FarEvent {  ///< far_field's sweep: a node, occluder or object at its distance
     double distance;
@@ -77,6 +77,7 @@ class CellVisibility {
   };
   std::vector<FarEvent> far_events_;
   std::vector<Vec2> far_points_;
+  std::vector<std::uint32_t> open_below_;  ///< open objects per object-quadtree node
   std::uint32_t stamp_ = 0;
 };
 
