@@ -133,17 +133,18 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(hc.largest_map));
     std::printf(
         "       per cell: occluders considered %.1f occluded %.1f behind-horizon %.1f; "
-        "objects in map %.1f behind-horizon %.1f; nodes rejected %.1f; shadows %.0f; "
-        "pixels %.0f; far field: objects %.1f, occluders added %.1f (all samples)\n",
+        "objects in map %.1f; nodes rejected %.1f; shadows %.0f; "
+        "pixels %.0f; far field: objects %.1f, occluders added %.1f (all samples), sight lines "
+        "%.1f\n",
         double(hc.occluders_considered) / double(hc.cells),
         double(hc.occluders_occluded) / double(hc.cells),
         double(hc.occluders_behind_horizon) / double(hc.cells),
         double(hc.objects_in_map) / double(hc.cells),
-        double(hc.objects_behind_horizon) / double(hc.cells),
         double(hc.nodes_behind_horizon) / double(hc.cells), double(hc.shadows) / double(hc.cells),
         double(hc.pixels_written) / double(hc.cells),
         double(hc.objects_far_field) / double(hc.cells),
-        double(hc.occluders_far_field) / double(hc.cells));
+        double(hc.occluders_far_field) / double(hc.cells),
+        double(hc.sight_lines) / double(hc.cells));
     std::fflush(stdout);
   }
   return 0;

@@ -65,7 +65,8 @@ void render_sample_unhidden(const Vec3& sample,
   horizon.reset(sample);
   std::vector<std::pair<double, const geometry::Occluder*>> order;
   order.reserve(occluders.size());
-  for (const geometry::Occluder* o : occluders) order.emplace_back(horizon.distance_to(o->bounds), o);
+  for (const geometry::Occluder* o : occluders)
+    order.emplace_back(horizon.distance_to(o->bounds), o);
   // Ties broken by the pointer (the scene's occluder order): deterministic.
   std::sort(order.begin(), order.end());
   for (const auto& [d, o] : order) {

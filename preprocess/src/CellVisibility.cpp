@@ -7,6 +7,7 @@
 #include "urbanpvs/preprocess/CullMapHorizon.hpp"
 #include "urbanpvs/preprocess/ObjectTest.hpp"
 #include "urbanpvs/preprocess/SampleHorizon.hpp"
+#include "urbanpvs/preprocess/SightLine.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
@@ -50,10 +51,10 @@ CellCounters& CellCounters::operator+=(const CellCounters& o) {
   occluders_occluded += o.occluders_occluded;
   occluders_behind_horizon += o.occluders_behind_horizon;
   objects_in_map += o.objects_in_map;
-  objects_behind_horizon += o.objects_behind_horizon;
   nodes_behind_horizon += o.nodes_behind_horizon;
   objects_far_field += o.objects_far_field;
   occluders_far_field += o.occluders_far_field;
+  sight_lines += o.sight_lines;
   shadows += o.shadows;
   pixels_written += o.pixels_written;
   return *this;
@@ -70,7 +71,6 @@ CellVisibility::CellVisibility(const BakeScene& scene)
       all_occluders_(pointers_to(scene.occluders())),
       object_decided_(scene.city().objects.size(), 0),
       occluder_dropped_(scene.occluders().size(), 0),
-      object_node_done_(scene.object_index().nodes().size(), 0),
       occluder_node_done_(scene.occluder_index().nodes().size(), 0),
       far_visible_(scene.city().objects.size(), 0),
       far_open_(scene.city().objects.size(), 0) {}
@@ -138,13 +138,22 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
              centre(pixel_of(b.xy.max.y, lattice.origin.y), lattice.origin.y)}};
     return b;
   };
+  // A centre the horizon's sectors leave open gets the exact sight line: the pixel's own test
+  // in the brute-force map. The margin keeps float rounding of that map's heights (a few µm)
+  // from making this one stricter.
+  constexpr double kSightMargin = 1e-4;
   auto points_hidden = [&](const SampleHorizon& h, std::uint32_t o) {
     const geometry::Box3 b = centres_box(o);
-    far_points_.clear();
     for (double y = b.xy.min.y; y <= b.xy.max.y + 0.25 * lattice.pixel; y += lattice.pixel)
-      for (double x = b.xy.min.x; x <= b.xy.max.x + 0.25 * lattice.pixel; x += lattice.pixel)
-        far_points_.push_back({x, y});
-    return h.hides_points(far_points_, b.zmax);
+      for (double x = b.xy.min.x; x <= b.xy.max.x + 0.25 * lattice.pixel; x += lattice.pixel) {
+        const Vec2 p[1] = {{x, y}};
+        if (h.hides_points(p, b.zmax)) continue;
+        ++c.sight_lines;
+        if (!sight_line_blocked(h.sample(), Vec3{x, y, b.zmax}, tree, scene_.occluders(),
+                                kSightMargin))
+          return false;
+      }
+    return true;
   };
   auto farthest = [&](const SampleHorizon& h, const geometry::Box2& b) {
     const double dx = std::max(h.sample().x - b.min.x, b.max.x - h.sample().x);
@@ -236,8 +245,8 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
 std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, CellCounters& c) {
   // A fresh stamp marks this cell's decisions; the arrays are only cleared when it wraps.
   if (++stamp_ == 0) {
-    for (auto* v : {&object_decided_, &occluder_dropped_, &object_node_done_, &occluder_node_done_,
-                    &far_visible_, &far_open_})
+    for (auto* v :
+         {&object_decided_, &occluder_dropped_, &occluder_node_done_, &far_visible_, &far_open_})
       std::fill(v->begin(), v->end(), 0u);
     stamp_ = 1;
   }
@@ -321,37 +330,25 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
     c.shadows += stats.shadows;
     c.pixels_written += stats.pixels_written;
 
-    // Objects: inside the map decided by its heights (final: nothing outside the map casts a
-    // shadow into it), outside it by the horizon; the rest waits for a larger map.
+    // Objects inside the map are decided by its heights (final: nothing outside the map casts a
+    // shadow into it). The rest waits for a larger map or, beyond the largest, for the sample
+    // horizons. (The map's own horizon, thesis 5.6, judges a sight line by the height at a
+    // border pixel's centre, not where the line crosses the border: sound for the unshrunk
+    // occluders by the ε argument of 7.2, but it can hide an object that the brute-force map,
+    // judging every pixel centre exactly, shows. Objects are left to the sample horizons,
+    // which never do; occluders it drops above only make the next map lower.)
     pending.clear();
-    object_tree.visit(
-        [&](std::uint32_t id, const BoxQuadtree::Node& n) {
-          if (object_node_done_[id] == stamp_) return false;
-          if (!last && outside_map(grid, n.box.xy) && hidden_behind_horizon(map, box, n.box)) {
-            object_node_done_[id] = stamp_;
-            ++c.nodes_behind_horizon;
-            object_tree.for_each_item_below(id, [&](std::uint32_t o) {
-              if (object_decided_[o] == stamp_) return;
-              decide(o, false);
-              ++c.objects_behind_horizon;
-            });
-            return false;
-          }
-          return true;
-        },
-        [&](std::uint32_t o) {
-          if (object_decided_[o] == stamp_) return;
-          const geometry::Box3& b = objects[o].bbox;
-          if (last || inside_map(grid, b.xy)) {
-            decide(o, !hidden_by(map, b));
-            ++c.objects_in_map;
-          } else if (outside_map(grid, b.xy) && hidden_behind_horizon(map, box, b)) {
-            decide(o, false);
-            ++c.objects_behind_horizon;
-          } else {
-            pending.push_back(o);
-          }
-        });
+    object_tree.visit([](std::uint32_t, const BoxQuadtree::Node&) { return true; },
+                      [&](std::uint32_t o) {
+                        if (object_decided_[o] == stamp_) return;
+                        const geometry::Box3& b = objects[o].bbox;
+                        if (last || inside_map(grid, b.xy)) {
+                          decide(o, !hidden_by(map, b));
+                          ++c.objects_in_map;
+                        } else {
+                          pending.push_back(o);
+                        }
+                      });
     if (last) break;
     if (pending.empty()) {
       ++c.early_breaks;

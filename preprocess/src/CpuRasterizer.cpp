@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 
 namespace urbanpvs::preprocess {
 
@@ -15,7 +15,8 @@ std::size_t rasterize_max(const OccluderShadow& shadow, CullMap& map) {
   for (Vec2 p : poly) ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
   // Rows whose centre line lies in [ymin, ymax).
   const int j0 = std::max(0, static_cast<int>(std::ceil((ymin - g.origin.y) / g.pixel - 0.5)));
-  const int j1 = std::min(g.height - 1, static_cast<int>(std::ceil((ymax - g.origin.y) / g.pixel - 0.5)) - 1);
+  const int j1 =
+      std::min(g.height - 1, static_cast<int>(std::ceil((ymax - g.origin.y) / g.pixel - 0.5)) - 1);
   std::size_t written = 0;
   for (int j = j0; j <= j1; ++j) {
     const double y = g.origin.y + (j + 0.5) * g.pixel;
@@ -30,7 +31,8 @@ std::size_t rasterize_max(const OccluderShadow& shadow, CullMap& map) {
     }
     if (!(xl < xr)) continue;
     const int i0 = std::max(0, static_cast<int>(std::ceil((xl - g.origin.x) / g.pixel - 0.5)));
-    const int i1 = std::min(g.width - 1, static_cast<int>(std::ceil((xr - g.origin.x) / g.pixel - 0.5)) - 1);
+    const int i1 =
+        std::min(g.width - 1, static_cast<int>(std::ceil((xr - g.origin.x) / g.pixel - 0.5)) - 1);
     // Along the row the height is linear: z(i) = row + i·step, exactly as height(center(i, j)).
     const double row = shadow.height({g.origin.x + 0.5 * g.pixel, y});
     const double step = shadow.a * g.pixel;

@@ -34,6 +34,8 @@ CullMap::CullMap(const CullMapGrid& grid)
       z_(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height),
          kNothingHidden) {}
 
-void CullMap::fill(float value) { std::fill(z_.begin(), z_.end(), value); }
+void CullMap::fill(float value) {
+  std::fill(z_.begin(), z_.end(), value);
+}
 
 }  // namespace urbanpvs::preprocess

@@ -40,7 +40,8 @@ Reference reference_height(const Vec3& v3, const std::vector<Occluder>& occluder
                           geometry::cross(b - v, p - v) * geometry::cross(b - v, a - v) >= 0;
       if (!behind || !within) return;
       // The sight line from V over the edge's top, continued to p (similar triangles).
-      const double t = geometry::cross(a - v, b - a) / geometry::cross(p - v, b - a);  // q = v + t(p - v)
+      const double t =
+          geometry::cross(a - v, b - a) / geometry::cross(p - v, b - a);  // q = v + t(p - v)
       const double h = v3.z + (o.top_z - v3.z) / t;
       r.height = std::max(r.height, h);
     });
@@ -81,7 +82,8 @@ TEST(CullMap, CpuRasterizerMatchesBruteForce) {
     for (int j = 0; j < grid.height; ++j)
       for (int i = 0; i < grid.width; ++i) {
         const Reference r = reference_height(v, occ, grid.center(i, j));
-        const float expected = std::isinf(r.height) ? CullMap::kNothingHidden : float_below(r.height);
+        const float expected =
+            std::isinf(r.height) ? CullMap::kNothingHidden : float_below(r.height);
         if (r.boundary_distance < 1e-6) {
           ++near_boundary;  // a centre on a wedge side may go either way
           continue;
@@ -171,9 +173,9 @@ TEST(CullMap, HandBuiltScene) {
   const CullMapGrid grid = CullMapGrid::covering({{-100, -50}, {200, 250}}, 1.0);
   std::vector<Occluder> occ{wall(0, 20, 100, 30, 15)};
   const std::vector<geometry::CityObject> objects{
-      box_object(0, 40, 40, 60, 60, 12),   // low, right behind the wall
-      box_object(1, 40, 40, 60, 60, 80),   // tall: seen over the wall
-      box_object(2, 140, 40, 160, 60, 12), // beyond the wall's end
+      box_object(0, 40, 40, 60, 60, 12),    // low, right behind the wall
+      box_object(1, 40, 40, 60, 60, 80),    // tall: seen over the wall
+      box_object(2, 140, 40, 160, 60, 12),  // beyond the wall's end
   };
   const CullMap map = cell_cull_map(grid, samples, occ);
   EXPECT_EQ(visible_objects(map, objects), (std::vector<std::uint32_t>{1, 2}));

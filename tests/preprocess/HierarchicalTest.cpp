@@ -66,16 +66,16 @@ Comparison compare(const geometry::City& city, BakeOptions options) {
   return c;
 }
 
-TEST(Hierarchical, FineMapsGiveTheBruteForcePvsOrASupersetAtMostTwoPercentLarger) {
+TEST(Hierarchical, GrowingMapsAloneGiveASupersetOfTheBruteForcePvsAtMostTwoPercentLarger) {
   BakeOptions o = strip_options(small_city());
   o.max_map = 65536;  // cull maps alone, grown until they cover the city
   const Comparison c = compare(small_city(), o);
   ASSERT_GT(c.cells, 15u);
   EXPECT_EQ(c.not_superset, 0u);
   EXPECT_LE(c.hierarchical, 1.02 * c.brute);
-  // The hierarchy did its work: objects and occluders rejected by the horizon, early breaks.
-  EXPECT_GT(c.counters.objects_behind_horizon, 0u);
+  // The hierarchy did its work: occluders dropped behind the horizon, maps grown.
   EXPECT_GT(c.counters.occluders_behind_horizon, 0u);
+  EXPECT_GT(c.counters.maps, c.counters.cells);
   EXPECT_GE(c.counters.maps, c.counters.cells);
   EXPECT_LE(c.counters.early_breaks, c.counters.cells);
   EXPECT_LE(c.counters.occluders_rendered, c.counters.occluders_considered);
@@ -103,7 +103,9 @@ TEST(Hierarchical, SampleHorizonsAloneStayASupersetOfTheBruteForcePvs) {
   const Comparison c = compare(small_city(), o);
   ASSERT_GT(c.cells, 15u);
   EXPECT_EQ(c.not_superset, 0u);
-  EXPECT_LE(c.hierarchical, 1.05 * c.brute);
+  // Where their sectors cannot decide a pixel centre they trace its sight line, as the map
+  // would: nearly the brute-force PVS itself.
+  EXPECT_LE(c.hierarchical, 1.005 * c.brute);
   std::printf("16-pixel map: mean PVS hierarchical %.2f brute force %.2f\n",
               c.hierarchical / double(c.cells), c.brute / double(c.cells));
 }

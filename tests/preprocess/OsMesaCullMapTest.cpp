@@ -21,7 +21,8 @@ std::vector<Occluder> random_occluders(std::mt19937_64& rng, int n) {
     const double x = pos(rng), y = pos(rng), w = size(rng), h = size(rng);
     Occluder o;
     o.top_z = height(rng);
-    o.shape = geometry::Polygon{{{x, y}, {x + w, y + 0.3 * h}, {x + 0.7 * w, y + h}, {x - 0.2 * w, y + 0.8 * h}}, {}};
+    o.shape = geometry::Polygon{
+        {{x, y}, {x + w, y + 0.3 * h}, {x + 0.7 * w, y + h}, {x - 0.2 * w, y + 0.8 * h}}, {}};
     o.bounds = geometry::bounds(o.shape);
     out.push_back(std::move(o));
   }
@@ -50,7 +51,8 @@ TEST(OsMesaCullMap, AgreesWithCpuReference) {
     // OpenGL snaps vertices to 1/256 of a pixel: a pixel centre within two such steps of a
     // shadow's border may fall on either side (the ε coupling keeps that slack, CullMapSettings).
     auto near_border = [&](std::size_t k) {
-      const Vec2 c = grid.center(static_cast<int>(k % grid.width), static_cast<int>(k / grid.width));
+      const Vec2 c =
+          grid.center(static_cast<int>(k % grid.width), static_cast<int>(k / grid.width));
       for (const Vec3& v : samples)
         for (const Occluder& o : occ) {
           bool near = false;
@@ -59,7 +61,8 @@ TEST(OsMesaCullMap, AgreesWithCpuReference) {
             if (!sh) return;
             for (std::size_t e = 0; e < sh->polygon.size(); ++e)
               near |= geometry::distance_to_segment(c, sh->polygon[e],
-                                                    sh->polygon[(e + 1) % sh->polygon.size()]) < grid.pixel / 128;
+                                                    sh->polygon[(e + 1) % sh->polygon.size()]) <
+                      grid.pixel / 128;
           });
           if (near) return true;
         }
@@ -69,8 +72,8 @@ TEST(OsMesaCullMap, AgreesWithCpuReference) {
       const float a = cpu.values()[k], b = ogl.values()[k];
       ++pixels;
       if (std::isinf(a) != std::isinf(b)) {
-        ASSERT_TRUE(near_border(k)) << "scene " << scene << " pixel " << k << " coverage differs: cpu "
-                                    << a << " gl " << b;
+        ASSERT_TRUE(near_border(k))
+            << "scene " << scene << " pixel " << k << " coverage differs: cpu " << a << " gl " << b;
         ++border_pixels;
         continue;
       }

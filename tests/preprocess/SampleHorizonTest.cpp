@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The sample horizon against an independent ground truth: whatever it hides, every sight line
-// from the sample to the box's top is cut by an occluder wall below the wall's top (2.5D prisms,
-// segment against edge, no angles or sectors involved). Random scenes with convex and concave
-// occluders and courtyards, in sweep order and out of it; and that it hides a fair share.
+// The sample horizon and the exact sight line against an independent ground truth: whatever it
+// hides, every sight line from the sample to the box's top is cut by an occluder wall below the
+// wall's top (2.5D prisms, segment against edge, no angles or sectors involved). Random scenes with
+// convex and concave occluders and courtyards, in sweep order and out of it; and that it hides a
+// fair share.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,8 @@
 #include <random>
 
 #include "urbanpvs/preprocess/SampleHorizon.hpp"
+#include "urbanpvs/preprocess/SightLine.hpp"
+#include "urbanpvs/preprocess/SpatialIndex.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
@@ -29,7 +32,7 @@ bool wall_cuts(const Vec3& s, const Vec3& p, Vec2 a, Vec2 b, double top) {
   return s.z + t * (p.z - s.z) < top;
 }
 
-bool blocked(const Vec3& s, const Vec3& p, const std::vector<Occluder>& occluders) {
+bool blocked_by_walls(const Vec3& s, const Vec3& p, const std::vector<Occluder>& occluders) {
   for (const Occluder& o : occluders) {
     bool cut = false;
     geometry::for_each_edge(o.shape,
@@ -97,7 +100,7 @@ void expect_hidden_by_ground_truth(const Vec3& s, const Box3& box,
     for (int j = 0; j <= kSteps; ++j) {
       const Vec3 p{box.xy.min.x + (box.xy.max.x - box.xy.min.x) * i / kSteps,
                    box.xy.min.y + (box.xy.max.y - box.xy.min.y) * j / kSteps, box.zmax};
-      ASSERT_TRUE(blocked(s, p, occluders))
+      ASSERT_TRUE(blocked_by_walls(s, p, occluders))
           << "sample (" << s.x << ", " << s.y << ", " << s.z << ") sees (" << p.x << ", " << p.y
           << ", " << p.z << ")";
     }
@@ -225,12 +228,37 @@ TEST(SampleHorizon, PointsAndOutOfOrderQueriesStayConservative) {
         const Vec2 one[1] = {p};
         if (!h.hides_points(one, z)) continue;
         ++hidden;
-        ASSERT_TRUE(blocked(s, Vec3{p.x, p.y, z}, occluders));
+        ASSERT_TRUE(blocked_by_walls(s, Vec3{p.x, p.y, z}, occluders));
       }
       if (HasFatalFailure()) return;
     }
   }
   EXPECT_GT(hidden, 1000u);
+}
+
+TEST(SightLine, AgreesWithEveryWallTestedInTurn) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> pos(-150, 150), size(4, 25), top(3, 40), eye(0.5, 6);
+  std::vector<Occluder> occluders;
+  std::vector<Box3> boxes;
+  for (int k = 0; k < 80; ++k) {
+    occluders.push_back(make_occluder(
+        {star(Vec2{pos(rng), pos(rng)}, size(rng), 4 + k % 7, k % 2 == 0, rng), {}}, top(rng)));
+    Box3 b;
+    b.xy = occluders.back().bounds;
+    b.zmax = occluders.back().top_z;
+    boxes.push_back(b);
+  }
+  const BoxQuadtree tree(boxes, 4);
+  int blocked = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Vec3 s{pos(rng), pos(rng), eye(rng)}, p{pos(rng), pos(rng), top(rng)};
+    const bool expected = blocked_by_walls(s, p, occluders);
+    ASSERT_EQ(sight_line_blocked(s, p, tree, occluders, 0), expected) << k;
+    blocked += expected ? 1 : 0;
+  }
+  EXPECT_GT(blocked, 1000);
+  EXPECT_LT(blocked, 3900);
 }
 
 }  // namespace

@@ -24,10 +24,10 @@ inline constexpr std::array<std::pair<const char*, std::uint64_t CellCounters::*
         {"occluders_occluded", &CellCounters::occluders_occluded},
         {"occluders_behind_horizon", &CellCounters::occluders_behind_horizon},
         {"objects_in_map", &CellCounters::objects_in_map},
-        {"objects_behind_horizon", &CellCounters::objects_behind_horizon},
         {"nodes_behind_horizon", &CellCounters::nodes_behind_horizon},
         {"objects_far_field", &CellCounters::objects_far_field},
         {"occluders_far_field", &CellCounters::occluders_far_field},
+        {"sight_lines", &CellCounters::sight_lines},
         {"shadows", &CellCounters::shadows},
         {"pixels_written", &CellCounters::pixels_written},
     }};

@@ -26,9 +26,9 @@ struct CullMapStats {
 /// Which occluders a sample's pass may leave out, drawing front to back (thesis 5.6.1: occluded
 /// occluders add nothing). Every choice stays conservative.
 enum class OccluderSkipping {
-  None,            ///< draw every occluder: the brute-force map by definition
-  HiddenInMap,     ///< skip those hidden in the sample's map so far (render_sample_front_to_back)
-  BehindHorizon,   ///< skip those the sample's horizon hides (render_sample_unhidden): same map
+  None,           ///< draw every occluder: the brute-force map by definition
+  HiddenInMap,    ///< skip those hidden in the sample's map so far (render_sample_front_to_back)
+  BehindHorizon,  ///< skip those the sample's horizon hides (render_sample_unhidden): same map
 };
 
 /// Writes the max over all occluder shadows seen from `sample` into `map` (which the caller

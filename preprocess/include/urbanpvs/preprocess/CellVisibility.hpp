@@ -35,10 +35,10 @@ struct CellCounters {
   std::uint64_t occluders_occluded = 0;        ///< dropped: hidden inside the previous map
   std::uint64_t occluders_behind_horizon = 0;  ///< dropped: hidden behind the previous horizon
   std::uint64_t objects_in_map = 0;            ///< objects decided by the map's heights
-  std::uint64_t objects_behind_horizon = 0;    ///< objects hidden by the horizon
   std::uint64_t nodes_behind_horizon = 0;      ///< quadtree nodes rejected whole
   std::uint64_t objects_far_field = 0;         ///< objects left to the sample horizons
   std::uint64_t occluders_far_field = 0;       ///< occluders added to them (over samples)
+  std::uint64_t sight_lines = 0;               ///< pixel centres traced exactly (SightLine)
   std::uint64_t shadows = 0;                   ///< shadow polygons rasterized
   std::uint64_t pixels_written = 0;            ///< by the CPU rasterizer
 
@@ -68,15 +68,14 @@ class CellVisibility {
   std::unique_ptr<CellMapRenderer> renderer_;
   std::vector<const geometry::Occluder*> all_occluders_;  ///< for the brute-force form
   // Per-cell marks, valid where the stamp equals the current cell's (no clearing per cell).
-  std::vector<std::uint32_t> object_decided_, occluder_dropped_, object_node_done_,
-      occluder_node_done_, far_visible_, far_open_;
+  std::vector<std::uint32_t> object_decided_, occluder_dropped_, occluder_node_done_, far_visible_,
+      far_open_;
   SampleHorizon horizon_;
   struct FarEvent {  ///< far_field's sweep: a node, occluder or object at its distance
     double distance;
     std::uint32_t kind, id;
   };
   std::vector<FarEvent> far_events_;
-  std::vector<Vec2> far_points_;
   std::vector<std::uint32_t> open_below_;  ///< open objects per object-quadtree node
   std::uint32_t stamp_ = 0;
 };

@@ -31,7 +31,7 @@ namespace urbanpvs::preprocess {
 class SampleHorizon {
  public:
   /// Sectors of the full circle: 2π/4096 ≈ 0.09°, 0.5 m at 300 m.
-  static constexpr int kBins = 16384;
+  static constexpr int kBins = 2048;
 
   SampleHorizon();
   /// Starts over for `sample`: nothing hidden anywhere.
