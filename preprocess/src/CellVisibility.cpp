@@ -103,7 +103,7 @@ std::vector<std::uint32_t> CellVisibility::brute_force(std::uint32_t cell, CellC
   return visible_objects(map, scene_.city().objects);
 }
 
-// Objects the fine maps left open, decided per sample by a front-to-back sweep over the occluder
+// Objects the cull maps left open, decided per sample by a front-to-back sweep over the occluder
 // quadtree with the sample's horizon (SampleHorizon): an object is hidden from the cell when it
 // is hidden from every sample. Nodes and occluders already hidden are skipped whole; the sweep
 // of a sample stops when every open object has been met.

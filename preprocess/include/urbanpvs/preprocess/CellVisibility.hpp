@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The PVS of one view cell by the hierarchical occlusion test of thesis 5.6. A small cull map
-// centred on the cell grows (×2 per side) until it covers the city or nothing outside it can be
-// seen:
+// The PVS of one view cell by the hierarchical occlusion test of thesis 5.6, in two parts.
+// Near the cell, cull maps: a small map centred on the cell, grown ×2 per side up to
+// BakeOptions::max_map:
 //  - values inside a map are final once every occluder that meets the map is rendered: an
 //    occluder outside a convex map around the cell casts its shadow away from the cell, never
 //    into the map; so objects inside are decided as soon as they lie inside;
 //  - occluders hidden in the current map (occluded occluders) or behind its horizon add nothing
-//    to any larger map and are dropped (thesis 5.6.1);
-//  - objects and occluders outside the map are tested against the horizon, whole quadtree nodes
-//    at once; when no undecided object remains outside, the test stops early (early break).
+//    to any larger map and are dropped (thesis 5.6.1).
+// Beyond the largest map, the sample horizons (SampleHorizon): per sample a front-to-back sweep
+// over the occluder and object quadtrees, whole districts rejected at once, stopping when every
+// open object has been met; pixel centres its sectors cannot decide are traced exactly
+// (SightLine). An object is hidden from the cell when it is hidden from every sample: the
+// thesis's min-over-samples merge (5.5), taken per object instead of per pixel.
 // The brute-force form (one map over the city, every occluder) is kept as the reference.
 #pragma once
 

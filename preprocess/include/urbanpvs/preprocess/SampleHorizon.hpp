@@ -6,16 +6,16 @@
 // from every sample (the merge is a min over samples, thesis 5.5), and per sample the umbra of
 // 2.5D occluders is a function of direction and distance alone (the height along a ray from the
 // sample rises linearly behind each wall it crosses, thesis 4.2.1). That makes it cheap far from
-// the cell, where a cull map would need a huge pixel count or coarse pixels that lose the fused
-// shadows.
+// the cell, where a cull map would need millions of pixels per sample.
 //
 // Conservative by construction, for the same ε-shrunk occluders as the cull maps:
 //  - a sector counts a wall only when the facing walls of one ring cover the whole sector, and
 //    only from the distance where every ray of the sector has crossed one of them;
 //  - the slope of a sector is the least over its rays (the ray that crosses farthest);
-//  - objects are tested over every sector their box touches, at the box's nearest distance.
+//  - a box is tested over every sector it touches, in each at its nearest point there, counting
+//    only walls the sector's rays have crossed by then.
 // So whatever it hides is hidden in the exact per-sample umbra, and so in the brute-force cull
-// map (which samples that umbra at pixel centres) when the box is grown by one pixel.
+// map, which samples that umbra at pixel centres, for every centre the box holds.
 #pragma once
 
 #include <array>
