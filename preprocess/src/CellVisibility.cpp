@@ -124,18 +124,13 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
   // through those centres, every point of it, and where that fails the centres themselves:
   // whatever they hide, that map hides.
   const CullMapGrid& lattice = scene_.area();
-  auto pixel_of = [&](double v, double origin) {
-    return static_cast<long long>(std::floor((v - origin) / lattice.pixel));
-  };
-  auto centre = [&](long long i, double origin) {
-    return origin + (static_cast<double>(i) + 0.5) * lattice.pixel;
+  auto centre = [&](long long i, long long j) {
+    return lattice.center(static_cast<int>(i), static_cast<int>(j));
   };
   auto centres_box = [&](std::uint32_t o) {
     geometry::Box3 b = objects[o].bbox;
-    b.xy = {{centre(pixel_of(b.xy.min.x, lattice.origin.x), lattice.origin.x),
-             centre(pixel_of(b.xy.min.y, lattice.origin.y), lattice.origin.y)},
-            {centre(pixel_of(b.xy.max.x, lattice.origin.x), lattice.origin.x),
-             centre(pixel_of(b.xy.max.y, lattice.origin.y), lattice.origin.y)}};
+    const auto r = lattice.touched(b.xy);
+    b.xy = {centre(r.i0, r.j0), centre(r.i1, r.j1)};
     return b;
   };
   // A centre the horizon's sectors leave open gets the exact sight line: the pixel's own test
@@ -143,13 +138,14 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
   // from making this one stricter.
   constexpr double kSightMargin = 1e-4;
   auto points_hidden = [&](const SampleHorizon& h, std::uint32_t o) {
-    const geometry::Box3 b = centres_box(o);
-    for (double y = b.xy.min.y; y <= b.xy.max.y + 0.25 * lattice.pixel; y += lattice.pixel)
-      for (double x = b.xy.min.x; x <= b.xy.max.x + 0.25 * lattice.pixel; x += lattice.pixel) {
-        const Vec2 p[1] = {{x, y}};
-        if (h.hides_points(p, b.zmax)) continue;
+    const double top = objects[o].bbox.zmax;
+    const auto r = lattice.touched(objects[o].bbox.xy);
+    for (long long j = r.j0; j <= r.j1; ++j)
+      for (long long i = r.i0; i <= r.i1; ++i) {
+        const Vec2 p = centre(i, j);
+        if (h.hides_point(p, top)) continue;
         ++c.sight_lines;
-        if (!sight_line_blocked(h.sample(), Vec3{x, y, b.zmax}, tree, scene_.occluders(),
+        if (!sight_line_blocked(h.sample(), Vec3{p.x, p.y, top}, tree, scene_.occluders(),
                                 kSightMargin))
           return false;
       }

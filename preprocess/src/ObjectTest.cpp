@@ -8,11 +8,7 @@ namespace urbanpvs::preprocess {
 bool hidden_by(const CullMap& map, const geometry::Box3& box) {
   const CullMapGrid& g = map.grid();
   if (box.xy.empty()) return false;
-  // floor() on both ends: a box edge exactly on a pixel border touches the pixel beyond too.
-  const double i0 = std::floor((box.xy.min.x - g.origin.x) / g.pixel);
-  const double i1 = std::floor((box.xy.max.x - g.origin.x) / g.pixel);
-  const double j0 = std::floor((box.xy.min.y - g.origin.y) / g.pixel);
-  const double j1 = std::floor((box.xy.max.y - g.origin.y) / g.pixel);
+  const auto [i0, j0, i1, j1] = g.touched(box.xy);
   if (i0 < 0 || j0 < 0 || i1 >= g.width || j1 >= g.height) return false;
   for (int j = static_cast<int>(j0); j <= static_cast<int>(j1); ++j)
     for (int i = static_cast<int>(i0); i <= static_cast<int>(i1); ++i)

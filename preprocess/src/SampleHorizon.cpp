@@ -131,18 +131,11 @@ void SampleHorizon::insert(int bin, Entry e) {
 
 // Where the ray from the origin along `u` enters `box` (relative to the origin), or infinity.
 double entry_along(const geometry::Box2& box, Vec2 u) {
-  double t0 = 0, t1 = std::numeric_limits<double>::infinity();
-  auto slab = [&](double lo, double hi, double du) {
-    if (du == 0) return lo <= 0 && 0 <= hi;
-    double a = lo / du, b = hi / du;
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-    return t0 <= t1;
-  };
-  if (!slab(box.min.x, box.max.x, u.x) || !slab(box.min.y, box.max.y, u.y))
-    return std::numeric_limits<double>::infinity();
-  return t0;
+  double t0, t1;
+  return geometry::clip_line_to_box({0, 0}, u, box, std::numeric_limits<double>::infinity(), &t0,
+                                    &t1)
+             ? t0
+             : std::numeric_limits<double>::infinity();
 }
 
 bool SampleHorizon::hides(const geometry::Box3& box) {
@@ -198,18 +191,15 @@ bool SampleHorizon::hides(const geometry::Box3& box) {
   return true;
 }
 
-bool SampleHorizon::hides_points(std::span<const Vec2> points, double top) const {
-  const double rise = top - sample_.z;
-  for (Vec2 p : points) {
-    const Vec2 v{p.x - sample_.x, p.y - sample_.y};
-    const double dist = std::hypot(v.x, v.y);
-    if (!(dist > 0)) return false;
-    const double a = std::atan2(v.y, v.x);
-    // A point on a sector border belongs to both sectors: test both.
-    for (double slack : {-kAngleSlack, kAngleSlack}) {
-      const int b = bin_of(static_cast<long long>(std::floor((a + slack) / kSector)));
-      if (!(slope_at(b, dist) * dist > rise)) return false;
-    }
+bool SampleHorizon::hides_point(Vec2 p, double top) const {
+  const Vec2 v{p.x - sample_.x, p.y - sample_.y};
+  const double dist = std::hypot(v.x, v.y);
+  if (!(dist > 0)) return false;
+  const double a = std::atan2(v.y, v.x);
+  // A point on a sector border belongs to both sectors: test both.
+  for (double slack : {-kAngleSlack, kAngleSlack}) {
+    const int b = bin_of(static_cast<long long>(std::floor((a + slack) / kSector)));
+    if (!(slope_at(b, dist) * dist > top - sample_.z)) return false;
   }
   return true;
 }

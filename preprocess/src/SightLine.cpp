@@ -5,24 +5,6 @@
 #include <limits>
 
 namespace urbanpvs::preprocess {
-namespace {
-
-// The part [t0, t1] of the segment from + t·d (t in [0, 1]) inside `box`; false when none.
-bool clip_to_box(Vec2 from, Vec2 d, const Box2& box, double* t0, double* t1) {
-  *t0 = 0;
-  *t1 = 1;
-  auto slab = [&](double o, double dv, double lo, double hi) {
-    if (dv == 0) return lo <= o && o <= hi;
-    double a = (lo - o) / dv, b = (hi - o) / dv;
-    if (a > b) std::swap(a, b);
-    *t0 = std::max(*t0, a);
-    *t1 = std::min(*t1, b);
-    return *t0 <= *t1;
-  };
-  return slab(from.x, d.x, box.min.x, box.max.x) && slab(from.y, d.y, box.min.y, box.max.y);
-}
-
-}  // namespace
 
 bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tree,
                         std::span<const geometry::Occluder> occluders, double margin) {
@@ -31,7 +13,7 @@ bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tre
   // The segment's lowest height over the part of it inside a box: nothing lower can block.
   auto lowest_in = [&](const Box2& box, double* height) {
     double t0, t1;
-    if (!clip_to_box(s, d, box, &t0, &t1)) return false;
+    if (!geometry::clip_line_to_box(s, d, box, 1.0, &t0, &t1)) return false;
     *height = from.z + std::min(t0 * dz, t1 * dz);
     return true;
   };

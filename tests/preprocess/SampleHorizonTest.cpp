@@ -225,8 +225,7 @@ TEST(SampleHorizon, PointsAndOutOfOrderQueriesStayConservative) {
         ++hidden;
         expect_hidden_by_ground_truth(s, b, occluders);
       } else {
-        const Vec2 one[1] = {p};
-        if (!h.hides_points(one, z)) continue;
+        if (!h.hides_point(p, z)) continue;
         ++hidden;
         ASSERT_TRUE(blocked_by_walls(s, Vec3{p.x, p.y, z}, occluders));
       }

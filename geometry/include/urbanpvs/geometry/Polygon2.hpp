@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace urbanpvs::geometry {
@@ -17,11 +18,21 @@ struct Vec2 {
   friend bool operator==(const Vec2&, const Vec2&) = default;
 };
 
-inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
-inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline Vec2 operator-(Vec2 a, Vec2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
+inline Vec2 operator+(Vec2 a, Vec2 b) {
+  return {a.x + b.x, a.y + b.y};
+}
+inline Vec2 operator*(double s, Vec2 a) {
+  return {s * a.x, s * a.y};
+}
+inline double cross(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+inline double dot(Vec2 a, Vec2 b) {
+  return a.x * b.x + a.y * b.y;
+}
 
 /// An open ring: the closing edge from back() to front() is implied, no point is repeated.
 using Ring = std::vector<Vec2>;
@@ -54,6 +65,23 @@ struct Box2 {
   Box2 grown(double d) const { return {{min.x - d, min.y - d}, {max.x + d, max.y + d}}; }
   double area() const { return empty() ? 0.0 : (max.x - min.x) * (max.y - min.y); }
 };
+
+/// The parameters [*t0, *t1] within [0, t_max] at which the line from + t·d lies in `box`
+/// (slab method); false when it misses. t_max = infinity for a ray.
+inline bool clip_line_to_box(Vec2 from, Vec2 d, const Box2& box, double t_max, double* t0,
+                             double* t1) {
+  *t0 = 0;
+  *t1 = t_max;
+  auto slab = [&](double o, double dv, double lo, double hi) {
+    if (dv == 0) return lo <= o && o <= hi;
+    double a = (lo - o) / dv, b = (hi - o) / dv;
+    if (a > b) std::swap(a, b);
+    *t0 = std::max(*t0, a);
+    *t1 = std::min(*t1, b);
+    return *t0 <= *t1;
+  };
+  return slab(from.x, d.x, box.min.x, box.max.x) && slab(from.y, d.y, box.min.y, box.max.y);
+}
 
 struct Box3 {
   Box2 xy;
@@ -91,15 +119,16 @@ inline Box2 bounds(const Ring& r) {
   return b;
 }
 
-inline Box2 bounds(const Polygon& p) { return bounds(p.outer); }
+inline Box2 bounds(const Polygon& p) {
+  return bounds(p.outer);
+}
 
 /// Even-odd point-in-ring test; points exactly on the boundary may go either way.
 inline bool inside_ring(const Ring& r, Vec2 p) {
   bool in = false;
   for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
     const Vec2 a = r[i], b = r[j];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x)
-      in = !in;
+    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x) in = !in;
   }
   return in;
 }

@@ -46,6 +46,19 @@ struct CullMapGrid {
     return {origin.x + (i + 0.5) * pixel, origin.y + (j + 0.5) * pixel};
   }
   Box2 bounds() const { return {origin, {origin.x + width * pixel, origin.y + height * pixel}}; }
+
+  /// Pixels [i0, i1] × [j0, j1] whose square meets `box` (floor on both ends: a box edge on a
+  /// pixel border touches the pixel beyond too); may reach outside the grid.
+  struct PixelRange {
+    long long i0, j0, i1, j1;
+  };
+  PixelRange touched(const Box2& box) const {
+    auto at = [&](double v, double o) {
+      return static_cast<long long>(std::floor((v - o) / pixel));
+    };
+    return {at(box.min.x, origin.x), at(box.min.y, origin.y), at(box.max.x, origin.x),
+            at(box.max.y, origin.y)};
+  }
   /// The grid of pixel size `pixel` covering `area` (grown to whole pixels).
   static CullMapGrid covering(const Box2& area, double pixel);
 };

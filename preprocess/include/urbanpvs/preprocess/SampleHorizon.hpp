@@ -20,7 +20,6 @@
 
 #include <array>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "urbanpvs/geometry/Occluder.hpp"
@@ -48,10 +47,10 @@ class SampleHorizon {
   /// every ray of its sector.
   bool hides(const geometry::Box3& box);
 
-  /// True when every one of `points` (at height `top`) is hidden by the walls added so far. For
+  /// True when the point `p` at height `top` is hidden by the walls added so far. For
   /// deciding objects the way a cull map does, by the pixel centres their box touches (thesis 7.2),
   /// where the box as a whole is not hidden.
-  bool hides_points(std::span<const Vec2> points, double top) const;
+  bool hides_point(Vec2 p, double top) const;
 
   /// Adds the walls of `occluder` that face the sample and rise above it. Call it once the
   /// sweep has reached the occluder (distance_to(occluder.bounds) >= the last query's).
