@@ -182,9 +182,17 @@ void CellVisibility::far_field(std::span<const Vec3> samples,
     return far_open_[o] == stamp_ && far_visible_[o] != stamp_;
   };
 
+  // No occluder (every building may vanish when shrunk by ε, thesis 7.2): no wall casts a
+  // shadow (thesis 4.2.1), so nothing is hidden from any sample and every open object is
+  // visible; there is no quadtree root to start a sweep from. Likewise, should an object be
+  // open with no object tree or no sample to sweep from, nothing proves it hidden.
+  if (open > 0 && (tree.nodes().empty() || nodes.empty() || samples.empty())) {
+    for (std::uint32_t o : objects_open) far_visible_[o] = stamp_;
+    return;
+  }
   std::vector<Event>& heap = far_events_;
   for (const Vec3& sample : samples) {
-    if (open == 0 || tree.nodes().empty() || nodes.empty()) break;
+    if (open == 0) break;  // every open object is visible from some sample already
     SampleHorizon& h = horizon_;
     h.reset(sample);
     heap.clear();

@@ -257,11 +257,20 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
   }
 }
 
-// Sectors wholly inside the unwrapped directions [lo, hi], as t0..t1; false when none.
-bool inner_sectors(double lo, double hi, long long* t0, long long* t1) {
-  if (hi - lo >= 2 * std::numbers::pi) {
-    *t0 = static_cast<long long>(std::ceil(lo / kSector));
-    *t1 = *t0 + SampleHorizon::kBins - 1;
+// The sectors a run of facing walls over the unwrapped directions [lo, hi] closes, as t0..t1;
+// false when none: those wholly inside [lo, hi]. A run once around the sample (`around`: a
+// courtyard whose every wall faces it) closes every sector, the seam's too, and there the
+// sector holding the direction of the run's first vertex is crossed by the first wall at one end
+// of [lo, hi] and by the last wall at the other, a turn apart. Both parts must count: behind a
+// wall only what lies below its shadow plane is hidden (thesis 4.2.1), so a sector may claim a
+// wall only from the farthest crossing over all of its rays (the horizon of thesis 5.6, per
+// sector); one part alone would claim the nearer wall for rays that cross the farther one. So
+// a full run takes every sector any of its walls crosses, floor(lo) to floor(hi), the seam's
+// bin at both ends, and close_sectors keeps the farthest crossing per bin.
+bool inner_sectors(double lo, double hi, bool around, long long* t0, long long* t1) {
+  if (around || hi - lo >= 2 * std::numbers::pi) {
+    *t0 = static_cast<long long>(std::floor(lo / kSector));
+    *t1 = static_cast<long long>(std::floor(hi / kSector));
     return true;
   }
   *t0 = static_cast<long long>(std::ceil((lo + kAngleSlack) / kSector));
@@ -321,15 +330,18 @@ void SampleHorizon::add_ring(const geometry::Ring& ring, double top, bool hole) 
     while (k < start + n && facing(k)) ++k;
     ++runs;
     const double a = angle(first), b = angle(k);
+    // Every wall faces the sample and the ring winds around it: the run tiles the full circle
+    // (its angle is monotone along the ring), whatever rounding makes of |b - a| - 2π.
+    const bool full = around && k - first == n;
     long long t0, t1;
-    if (inner_sectors(std::min(a, b), std::max(a, b), &t0, &t1))
+    if (inner_sectors(std::min(a, b), std::max(a, b), full, &t0, &t1))
       close_sectors(ring, first, k - 1, angle, t0, t1, top, kNoMark, by_run);
   }
   // The run around the sample closed everything; a single run spans the ring's whole extent.
   if (around || runs <= 1) return;
   const auto [lo, hi] = std::minmax_element(angle_.begin(), angle_.end());
   long long t0, t1;
-  if (inner_sectors(*lo, *hi, &t0, &t1))
+  if (inner_sectors(*lo, *hi, false, &t0, &t1))
     close_sectors(ring, 0, n - 1, angle, t0, t1, top, by_run, by_run);
 }
 

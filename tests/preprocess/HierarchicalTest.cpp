@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <random>
+#include <string>
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
@@ -108,6 +109,45 @@ TEST(Hierarchical, SampleHorizonsAloneStayASupersetOfTheBruteForcePvs) {
   EXPECT_LE(c.hierarchical, 1.005 * c.brute);
   std::printf("16-pixel map: mean PVS hierarchical %.2f brute force %.2f\n",
               c.hierarchical / double(c.cells), c.brute / double(c.cells));
+}
+
+TEST(Hierarchical, WithNoOccluderLeftEveryCellSeesEveryObject) {
+  // Two kiosks 1.5 m square and 10 m high, 300 m apart, nothing between them. Shrunk by ε = 1 m
+  // (thesis 7.2) neither leaves an occluder, so no wall casts a shadow (thesis 4.2.1) and every
+  // cell sees both. The first map (128 pixels, 178 m) around a cell holds one kiosk at most: the
+  // other is left to the sample horizons, which must find nothing to hide it with.
+  const std::string text = R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","id":"a","properties":{"height":10},"geometry":{"type":"Polygon",
+     "coordinates":[[[1000,1000],[1001.5,1000],[1001.5,1001.5],[1000,1001.5],[1000,1000]]]}},
+    {"type":"Feature","id":"b","properties":{"height":10},"geometry":{"type":"Polygon",
+     "coordinates":[[[1300,1000],[1301.5,1000],[1301.5,1001.5],[1300,1001.5],[1300,1000]]]}}]})";
+  geometry::ReadOptions read;
+  read.coordinates = geometry::ReadOptions::Coordinates::Projected;
+  const geometry::City city = geometry::read_city_text(text, "kiosks.geojson", read);
+  ASSERT_EQ(city.objects.size(), 2u);
+  BakeOptions options;  // the defaults: the hierarchical test, one map, then the horizons
+  const BakeScene scene(city, options);
+  ASSERT_TRUE(scene.occluders().empty());
+  ASSERT_GT(scene.cell_count(), 10u);
+  options.method = Method::BruteForce;
+  const BakeScene brute_scene(city, options);
+  CellVisibility hier(scene), brute(brute_scene);
+  CellCounters counters;
+  const std::vector<std::uint32_t> both{0, 1};
+  std::size_t wrong = 0, brute_wrong = 0;
+  for (std::uint32_t i = 0; i < scene.cell_count(); ++i) {
+    const std::vector<std::uint32_t> h = hier.pvs(i, &counters), b = brute.pvs(i);
+    if (h != both && ++wrong <= 3)
+      ADD_FAILURE() << "cell " << i << ": the hierarchical PVS holds " << h.size()
+                    << " of the 2 kiosks";
+    if (b != both && ++brute_wrong <= 3)
+      ADD_FAILURE() << "cell " << i << ": the brute-force PVS holds " << b.size()
+                    << " of the 2 kiosks";
+  }
+  EXPECT_EQ(wrong, 0u) << "of " << scene.cell_count() << " cells";
+  EXPECT_EQ(brute_wrong, 0u) << "of " << scene.cell_count() << " cells";
+  // The case in question: the sample horizons decided kiosks beyond the first map.
+  EXPECT_GT(counters.objects_far_field, 0u);
 }
 
 TEST(BruteForce, SkippingOccludersBehindTheSampleHorizonKeepsTheMapOfEveryOccluder) {

@@ -198,6 +198,61 @@ TEST(SampleHorizon, ACourtyardHidesEverythingLowOutsideIt) {
   for (std::size_t k = 0; k < boxes.size(); ++k) EXPECT_TRUE(h[k]) << "box " << k;
 }
 
+TEST(SampleHorizon, ACourtyardRunAroundTheSampleCountsBothWallsAtItsSeam) {
+  // An L-shaped courtyard, two arms 10 m wide and 100 m long, in a block 15 m high; the eye 2 m
+  // up in the square where the arms meet sees every wall of it: one run of facing walls around
+  // the eye, starting and ending at vertex 0, the inner corner (10, 10). The eye sits 9 m from
+  // that corner and just beside the line of one of its walls, the corner's direction in the
+  // middle of a sector: in that one sector the rays on one side of the corner leave through the
+  // other wall 9 m out, those on the other side run along the arm, grazing its wall, up to
+  // ~99 m. The sector may only count the courtyard's walls from the farther crossing; counting
+  // one end of the run alone, it hides the arm beyond 9 m. Both ways round (mirrored in y = x,
+  // which maps the courtyard onto itself): the grazing wall is the run's last, then its first.
+  const Ring hole{{10, 10}, {100, 10}, {100, 0}, {0, 0}, {0, 100}, {10, 100}};  // clockwise
+  const std::vector<Occluder> occ{
+      make_occluder({{{-20, -20}, {120, -20}, {120, 120}, {-20, 120}}, {hole}}, 15)};
+  const double sector = 2 * std::numbers::pi / SampleHorizon::kBins;
+  const long long seam = SampleHorizon::kBins / 4 - 1;  // the sector just below 90°
+  const double corner = (static_cast<double>(seam) + 0.5) * sector;
+  for (const bool mirrored : {false, true}) {
+    auto place = [&](Vec2 p) { return mirrored ? Vec2{p.y, p.x} : p; };
+    const Vec2 eye{10 - 9 * std::cos(corner), 10 - 9 * std::sin(corner)};
+    const Vec3 s{place(eye).x, place(eye).y, 2};
+    SampleHorizon h;
+    h.reset(s);
+    h.add(occ[0]);
+    std::size_t hidden = 0, loose = 0;
+    // Points along rays across the seam's sector, from the courtyard out past the block.
+    for (int f = 1; f < 16; ++f) {
+      const double a = (static_cast<double>(seam) + f / 16.0) * sector;
+      for (double d = 1; d <= 130; d += 0.5)
+        for (const double z : {0.0, 1.0, 8.0, 14.0}) {
+          const Vec2 p = place(eye + d * Vec2{std::cos(a), std::sin(a)});
+          const bool truth = blocked_by_walls(s, Vec3{p.x, p.y, z}, occ);
+          if (h.hides_point(p, z)) {
+            ++hidden;
+            ASSERT_TRUE(truth) << (mirrored ? "mirrored: " : "") << "sample (" << s.x << ", " << s.y
+                               << ") sees (" << p.x << ", " << p.y << ", " << z
+                               << ") but the horizon hides it";
+          } else if (truth) {
+            ++loose;
+          }
+        }
+    }
+    // A box along the arm, 20 to 90 m out, in plain view down the courtyard.
+    Box3 b;
+    b.xy.extend(place(Vec2{9.99, 20}));
+    b.xy.extend(place(Vec2{9.995, 90}));
+    b.zmax = 1;
+    if (h.hides(b)) expect_hidden_by_ground_truth(s, b, occ);
+    if (HasFatalFailure()) return;
+    // Not vacuous: beyond the block the seam's sector still hides what is low.
+    EXPECT_GT(hidden, 100u) << (mirrored ? "mirrored" : "");
+    std::printf("%s: hidden %zu points; %zu more hidden by the walls alone\n",
+                mirrored ? "mirrored" : "plain", hidden, loose);
+  }
+}
+
 TEST(SampleHorizon, PointsAndOutOfOrderQueriesStayConservative) {
   // Every wall added first, then boxes in random order and single points: whatever is hidden,
   // every sight line shows hidden.

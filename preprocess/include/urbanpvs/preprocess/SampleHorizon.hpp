@@ -29,7 +29,7 @@ namespace urbanpvs::preprocess {
 
 class SampleHorizon {
  public:
-  /// Sectors of the full circle: 2π/4096 ≈ 0.09°, 0.5 m at 300 m.
+  /// Sectors of the full circle: 2π/2048 ≈ 0.18°, 0.9 m at 300 m.
   static constexpr int kBins = 2048;
 
   SampleHorizon();
