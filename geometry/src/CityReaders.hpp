@@ -34,6 +34,14 @@ InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptio
 void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
                   const ReadOptions& options, City& city);
 
+/// Turns `o` into a non-occluding object: no occluders, its surfaces block nothing in
+/// validation, its footprint (its box's rectangle when it has none) is taken out of free space
+/// (no view cell inside a building), and `why` is listed in report.non_occluding.
+CityObject non_occluding(CityObject o, const std::string& why, ReadReport& report);
+
+/// Throws InputError(Implausible) for a building taller than options.max_height.
+void check_plausible(const CityObject& o, const ReadOptions& options, const std::string& file);
+
 /// The string member `key` of `obj`, or "" when absent or not a string (never throws).
 std::string string_member(const Json& obj, const char* key);
 

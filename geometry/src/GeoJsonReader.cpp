@@ -1,10 +1,19 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // GeoJSON (RFC 7946) reader for building footprints with height attributes, as exported from
-// OpenStreetMap or municipal cadastres. Footprints are extruded from the ground (z = 0) to their
-// height; OSM building:part features join the building whose outline contains them, as CityJSON
-// BuildingParts do, and then alone define its occluders (the outline's own height tag is the
-// building's maximum, which would overstate a lower wing).
+// OpenStreetMap or municipal cadastres. Footprints are extruded from the ground (z = 0, or the
+// terrain of a CityJSON file read with them: CityReader.cpp) to their height; OSM building:part
+// features join the building whose outline contains them, as CityJSON BuildingParts do, and then
+// alone define its occluders (the outline's own height tag is the building's maximum, which
+// would overstate a lower wing).
+//
+// Thesis 7.1: an occluder must lie inside the real building. OSM's `height` is the top of the
+// roof, so a pitched roof's occluder ends at the eaves (height - roof:height), and a part that
+// starts above the ground (min_height, building:min_level) gives no occluder at all: the 2.5D
+// occluders downstream stand on the ground, and the space below such a part is open.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <optional>
 
@@ -19,7 +28,8 @@ const Json& features_of(const Json& doc, const std::string& file) {
   static const Json empty = Json::array();
   if (doc["type"] == "Feature") return empty;  // handled by the caller as a single feature
   if (!doc.contains("features") || !doc["features"].is_array())
-    throw InputError(InputProblem::BadStructure, file, "", "FeatureCollection without \"features\"");
+    throw InputError(InputProblem::BadStructure, file, "",
+                     "FeatureCollection without \"features\"");
   return doc["features"];
 }
 
@@ -69,7 +79,8 @@ std::vector<const Json*> polygons_of(const Json& g, const std::string& file,
   } else {
     for (const Json& p : c) out.push_back(&p);
   }
-  if (out.empty()) throw InputError(InputProblem::InvalidGeometry, file, id, type + " without polygons");
+  if (out.empty())
+    throw InputError(InputProblem::InvalidGeometry, file, id, type + " without polygons");
   for (const Json* p : out)
     if (!p->is_array() || p->empty())
       throw InputError(InputProblem::InvalidGeometry, file, id, "polygon without rings");
@@ -116,8 +127,15 @@ struct Feature {
   Box2 box;
   bool part = false;
   double min_height = 0;
+  /// min_height or building:min_level is given but unreadable: where the part starts is
+  /// unknown, so it may float (no occluder).
+  bool base_unknown = false;
   std::optional<double> height;  // from attributes; the default is applied when needed
   bool height_from_levels = false;
+  std::optional<double> levels_height;  // building:levels x level height
+  std::string roof_shape;               // lower case; "" when not given
+  std::optional<double> roof_height;    // roof:height, else roof:levels x level height
+  std::string lost;                     // why no footprint of positive area is left, or empty
 };
 
 struct HeightReader {
@@ -134,18 +152,38 @@ struct HeightReader {
     return v;
   }
 
+  static bool given(const Json& props, const char* key) {
+    return props.contains(key) && !props[key].is_null();
+  }
+
   void read(const Json& props, Feature& f) {
     for (const char* key : {"height", "building:height", "measuredHeight"})
       if (!f.height) f.height = length(props, key, f.id);
-    if (!f.height)
-      if (std::optional<double> levels = length(props, "building:levels", f.id)) {
-        f.height = *levels * options.level_height;
-        f.height_from_levels = true;
-      }
-    if (std::optional<double> m = length(props, "min_height", f.id))
+    if (std::optional<double> levels = length(props, "building:levels", f.id))
+      f.levels_height = *levels * options.level_height;
+    if (!f.height && f.levels_height) {
+      f.height = f.levels_height;
+      f.height_from_levels = true;
+    }
+    f.roof_shape = string_member(props, "roof:shape");
+    for (char& c : f.roof_shape) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (given(props, "roof:shape") && !props["roof:shape"].is_string())
+      f.roof_shape = props["roof:shape"].dump();  // "roof:shape": 9 is no shape we know: not flat
+    if (std::optional<double> r = length(props, "roof:height", f.id))
+      f.roof_height = *r;
+    else if (std::optional<double> l = length(props, "roof:levels", f.id))
+      f.roof_height = *l * options.level_height;
+    if (f.roof_height && *f.roof_height < 0) f.roof_height.reset();
+    if (std::optional<double> m = length(props, "min_height", f.id)) {
       f.min_height = *m;
-    else if (std::optional<double> l = length(props, "building:min_level", f.id))
+    } else if (std::optional<double> l = length(props, "building:min_level", f.id)) {
       f.min_height = *l * options.level_height;
+    } else if (given(props, "min_height") || given(props, "building:min_level")) {
+      // An unreadable base must not become the ground: the part may start anywhere above it.
+      f.base_unknown = true;
+      report.warnings.push_back(file + ": " + f.id +
+                                ": where the part starts is unknown; it gives no occluder");
+    }
   }
 };
 
@@ -164,12 +202,15 @@ Feature read_feature(const Json& feature, std::size_t index, const std::string& 
         const Vec2 in = position(p, file, f.id);
         const auto local = mapping.to_local(in.x, in.y, 0);
         r.push_back({local[0], local[1]});
+        f.box.extend(r.back());
       }
       rings.push_back(std::move(r));
     }
-    f.polygons.push_back(clean_polygon(std::move(rings), {file, f.id, true}, report));
-    f.box.extend(bounds(f.polygons.back()));
+    for (Polygon& p :
+         clean_polygon(std::move(rings), {file, f.id, true, heights.options.strict}, report))
+      f.polygons.push_back(std::move(p));
   }
+  if (f.polygons.empty()) f.lost = "no footprint of positive area left after repair";
   const Json& props = feature.contains("properties") && feature["properties"].is_object()
                           ? feature["properties"]
                           : Json::object();
@@ -195,30 +236,111 @@ Vec2 interior_point(const Polygon& p) {
   return p.outer.front();
 }
 
-double feature_height(Feature& f, const std::string& file, const ReadOptions& options,
-                      ReadReport& report) {
+// The feature's height, or nullopt when it has none and no default is given.
+std::optional<double> feature_height(Feature& f, const ReadOptions& options, ReadReport& report) {
   if (f.height) {
     if (f.height_from_levels) ++report.level_heights;
     return *f.height;
   }
-  if (!options.default_height)
-    throw InputError(InputProblem::MissingHeight, file, f.id,
-                     "no height, building:height, measuredHeight or building:levels "
-                     "(give a default height)");
+  if (!options.default_height) return std::nullopt;
   ++report.default_heights;
   f.height = *options.default_height;
   return *f.height;
 }
 
-void add_occluders(Feature& f, CityObject& o, const std::string& file, const ReadOptions& options,
-                   ReadReport& report) {
-  const double h = feature_height(f, file, options, report);
-  for (const Polygon& p : f.polygons) o.bbox.extend(bounds(p).min, f.min_height),
-      o.bbox.extend(bounds(p).max, h);
-  // Parts that do not reach the ground (min_height > 0) leave open space below them; in 2.5D
-  // they cannot occlude anything conservatively.
-  if (f.min_height > 0 || h <= 0) return;
-  for (const Polygon& p : f.polygons) o.occluders.push_back({p, 0.0, h});
+// The input's own surfaces of a footprint prism from `base` to `top`: walls, top and bottom.
+void add_prism_surfaces(const Polygon& p, double base, double top, std::vector<Surface3>& out) {
+  auto ring3 = [](const Ring& r, double z) {
+    std::vector<std::array<double, 3>> v;
+    for (Vec2 q : r) v.push_back({q.x, q.y, z});
+    return v;
+  };
+  Surface3 top_face, bottom_face;
+  top_face.rings.push_back(ring3(p.outer, top));
+  bottom_face.rings.push_back(ring3(p.outer, base));
+  for (const Ring& h : p.holes) {
+    top_face.rings.push_back(ring3(h, top));
+    bottom_face.rings.push_back(ring3(h, base));
+  }
+  out.push_back(std::move(top_face));
+  out.push_back(std::move(bottom_face));
+  for_each_edge(p, [&](Vec2 a, Vec2 b) {
+    out.push_back({{{{a.x, a.y, base}, {b.x, b.y, base}, {b.x, b.y, top}, {a.x, a.y, top}}}});
+  });
+}
+
+// The top of the walls (eaves) and of the roof (ridge) of a feature of height `h`, both from the
+// ground. OSM's height (and --default-height) is the roof's top; building:levels counts the
+// storeys below the roof (OSM: roof:levels are extra), so a height from levels is the eaves.
+// A roof other than flat (roof:shape given and not "flat", or a roof:height / roof:levels with no
+// roof:shape) ends its walls roof:height below the top. With neither roof:height nor roof:levels,
+// building:levels x level height is the eaves when it is lower than `height`; else nothing tells
+// where the walls end, and the eaves are taken as min_height: no occluder volume comes from the
+// roof part (thesis 7.1: better no occluder than one through open air).
+struct WallTop {
+  double eaves = 0, top = 0;
+  bool cut = false;  // the occluder ends below `height`
+};
+
+WallTop wall_top(const Feature& f, double h) {
+  const double roof = f.roof_height.value_or(0);
+  if (f.height_from_levels) return {h, h + roof, false};
+  const bool pitched = f.roof_shape.empty() ? roof > 0 : f.roof_shape != "flat";
+  if (!pitched) return {h, h, false};
+  double eaves = f.min_height;
+  if (f.roof_height)
+    eaves = h - roof;
+  else if (f.levels_height && *f.levels_height < h)
+    eaves = *f.levels_height;
+  eaves = std::clamp(eaves, std::min(f.min_height, h), h);
+  return {eaves, h, eaves < h};
+}
+
+// Adds a feature's box, surfaces and occluders to its object; returns why it cannot occlude
+// (unknown height, geometry beyond repair), or an empty string.
+std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
+                          const ReadOptions& options, ReadReport& report) {
+  const std::optional<double> height = feature_height(f, options, report);
+  // Unknown: as tall as a building may be (ReadOptions::max_height).
+  const WallTop w = height ? wall_top(f, *height) : WallTop{0, options.max_height, false};
+  const double h = w.top;
+  if (h - f.min_height > options.max_height) {
+    char what[160];
+    std::snprintf(what, sizeof what,
+                  "height %.0f m is more than the tallest plausible (--max-height %.0f m)", h,
+                  options.max_height);
+    throw InputError(InputProblem::Implausible, file, f.id, what);
+  }
+  o.bbox.extend(f.box.min, f.min_height);
+  o.bbox.extend(f.box.max, std::max(h, f.min_height));
+  if (!height && options.strict)
+    throw InputError(InputProblem::MissingHeight, file, f.id,
+                     "no height, building:height, measuredHeight or building:levels "
+                     "(give a default height; --strict refuses objects of unknown height)");
+  if (!height)
+    return file + ": " + f.id +
+           ": no height, building:height, measuredHeight or building:levels (and no "
+           "--default-height)";
+  if (!f.lost.empty()) return file + ": " + f.id + ": " + f.lost;
+  for (const Polygon& p : f.polygons) add_prism_surfaces(p, f.min_height, h, o.surfaces);
+  // Parts that do not reach the ground (min_height > 0, or a base we cannot read) leave open
+  // space below them; the occluders downstream are 2.5D prisms standing on the ground, so such
+  // parts give none (never volume below min_height).
+  if (f.min_height > 0 || f.base_unknown) return {};
+  if (w.cut) ++report.roof_eaves;
+  if (w.eaves <= 0) return {};
+  for (const Polygon& p : f.polygons) o.occluders.push_back({p, 0.0, w.eaves});
+  return {};
+}
+
+// The box of a feature's raw coordinates, whatever their rings are like.
+Box2 raw_box(const Json& feature, const std::string& file, const std::string& id) {
+  Box2 b;
+  for (const Json* poly : polygons_of(feature["geometry"], file, id))
+    for (const Json& ring : *poly)
+      if (ring.is_array())
+        for (const Json& p : ring) b.extend(position(p, file, id));
+  return b;
 }
 
 }  // namespace
@@ -252,21 +374,20 @@ InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptio
     scan.kind = LocalFrame::Kind::Projected;
     scan.note = file + ": projected metres (as requested)";
   } else if (!declared.empty()) {
-    scan.kind = is_geographic_crs(declared) ? LocalFrame::Kind::Geographic
-                                            : LocalFrame::Kind::Projected;
+    scan.kind =
+        is_geographic_crs(declared) ? LocalFrame::Kind::Geographic : LocalFrame::Kind::Projected;
     scan.note = file + ": reference system " + declared + " from the \"crs\" member";
   } else {
     scan.kind = lonlat_range ? LocalFrame::Kind::Geographic : LocalFrame::Kind::Projected;
-    scan.note = file + (lonlat_range
-                            ? ": no \"crs\"; coordinates lie within lon/lat range, read as WGS84"
-                            : ": no \"crs\"; coordinates exceed lon/lat range, read as projected "
-                              "metres");
+    scan.note =
+        file + (lonlat_range ? ": no \"crs\"; coordinates lie within lon/lat range, read as WGS84"
+                             : ": no \"crs\"; coordinates exceed lon/lat range, read as projected "
+                               "metres");
   }
   if (scan.kind == LocalFrame::Kind::Geographic && !lonlat_range && !scan.bounds.empty())
     throw InputError(InputProblem::UnknownCrs, file, "",
                      "coordinates are read as WGS84 lon/lat but exceed its range");
-  scan.crs = declared.empty() && scan.kind == LocalFrame::Kind::Geographic ? "OGC:CRS84"
-                                                                            : declared;
+  scan.crs = declared.empty() && scan.kind == LocalFrame::Kind::Geographic ? "OGC:CRS84" : declared;
   return scan;
 }
 
@@ -297,9 +418,21 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
       Feature f = read_feature(feature, i, file, mapping, heights, report);
       (f.part ? parts : buildings).push_back(std::move(f));
     } catch (const InputError& e) {
-      if (!options.skip_invalid || e.problem() != InputProblem::InvalidGeometry) throw;
-      ++report.skipped_invalid;
-      report.warnings.push_back(std::string(e.what()) + " (skipped)");
+      if (options.strict || e.problem() != InputProblem::InvalidGeometry) throw;
+      // Beyond repair, yet still a building: kept over the box of its coordinates.
+      Feature f;
+      f.id = feature_id(feature, i);
+      const Box2 in = raw_box(feature, file, f.id);
+      if (in.empty()) {
+        report.warnings.push_back(std::string(e.what()) + " (no coordinates: skipped)");
+        return;
+      }
+      for (Vec2 c : {in.min, in.max}) {
+        const auto local = mapping.to_local(c.x, c.y, 0);
+        f.box.extend(Vec2{local[0], local[1]});
+      }
+      f.lost = e.what();
+      buildings.push_back(std::move(f));
     }
   });
 
@@ -307,7 +440,8 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
   std::vector<std::vector<Feature*>> parts_of(buildings.size());
   std::vector<Feature*> orphans;
   for (Feature& p : parts) {
-    const Vec2 q = interior_point(p.polygons.front());
+    const Vec2 q =
+        p.polygons.empty() ? 0.5 * (p.box.min + p.box.max) : interior_point(p.polygons.front());
     std::size_t best = buildings.size();
     double best_area = std::numeric_limits<double>::infinity();
     for (std::size_t b = 0; b < buildings.size(); ++b) {
@@ -328,21 +462,23 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
   for (std::size_t b = 0; b < buildings.size(); ++b) {
     Feature& f = buildings[b];
     CityObject o = object_of(f);
+    std::string why;
     if (parts_of[b].empty()) {
-      add_occluders(f, o, file, options, report);
+      why = add_occluders(f, o, file, options, report);
     } else {
-      for (Feature* p : parts_of[b]) add_occluders(*p, o, file, options, report);
+      for (Feature* p : parts_of[b])
+        if (std::string w = add_occluders(*p, o, file, options, report); why.empty()) why = w;
       // The outline still bounds the object; its height only matters when it has its own.
-      const double h = f.height.value_or(o.bbox.zmax);
-      for (const Polygon& poly : f.polygons) o.bbox.extend(bounds(poly).min, 0.0),
-          o.bbox.extend(bounds(poly).max, h);
+      const double h = f.height ? wall_top(f, *f.height).top : o.bbox.zmax;
+      o.bbox.extend(f.box.min, 0.0);
+      o.bbox.extend(f.box.max, h);
     }
-    city.objects.push_back(std::move(o));
+    city.objects.push_back(why.empty() ? std::move(o) : non_occluding(std::move(o), why, report));
   }
   for (Feature* p : orphans) {
     CityObject o = object_of(*p);
-    add_occluders(*p, o, file, options, report);
-    city.objects.push_back(std::move(o));
+    const std::string why = add_occluders(*p, o, file, options, report);
+    city.objects.push_back(why.empty() ? std::move(o) : non_occluding(std::move(o), why, report));
   }
 }
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "BoxGrid.hpp"
 
@@ -44,6 +45,26 @@ double distance_to(const Polygon& poly, Vec2 q) {
   return d;
 }
 
+// Triangle `t` clipped by the TIN triangle `tin` (Sutherland–Hodgman against its three edges,
+// whatever its orientation); empty when they do not overlap.
+std::vector<Vec2> clip_triangle(const std::array<Vec2, 3>& t, const Tri& tin) {
+  std::vector<Vec2> poly(t.begin(), t.end()), next;
+  const double orient = cross(tin.p[1] - tin.p[0], tin.p[2] - tin.p[0]) > 0 ? 1.0 : -1.0;
+  for (std::size_t k = 0; k < 3 && !poly.empty(); ++k) {
+    const Vec2 a = tin.p[k], b = tin.p[(k + 1) % 3];
+    auto side = [&](Vec2 q) { return orient * cross(b - a, q - a); };
+    next.clear();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
+      const double sp = side(p), sq = side(q);
+      if (sp >= 0) next.push_back(p);
+      if ((sp >= 0) != (sq >= 0)) next.push_back(p + (sp / (sp - sq)) * (q - p));
+    }
+    poly.swap(next);
+  }
+  return poly;
+}
+
 // Calls visit(item) for the items around p, ring by ring, until `done(clearance)` says that
 // nothing farther than the clearance can matter.
 template <class Visit, class Done>
@@ -67,10 +88,14 @@ struct GroundModel::Impl {
   bool uniform = false;  // every building stands on the same ground (generated cities)
   detail::BoxGrid grid;
 
-  double terrain_at(Vec2 q) const {
+  double terrain_at(Vec2 q) const { return terrain_nearest(q).first; }
+
+  // The terrain's height at q and the distance from q to the TIN (0 inside it).
+  std::pair<double, double> terrain_nearest(Vec2 q) const {
     for (std::uint32_t i : grid.at(q)) {
       const auto l = barycentric(terrain[i], q);
-      if (l[0] >= -1e-12 && l[1] >= -1e-12 && l[2] >= -1e-12) return interpolate(terrain[i], l);
+      if (l[0] >= -1e-12 && l[1] >= -1e-12 && l[2] >= -1e-12)
+        return {interpolate(terrain[i], l), 0.0};
     }
     // Outside the TIN (the margin around the city): the height of its nearest point.
     double best = kInf, z = 0;
@@ -93,7 +118,15 @@ struct GroundModel::Impl {
           if (d < best) best = d, z = interpolate(t, barycentric(t, c));
         },
         [&](double clearance) { return best <= clearance; });
-    return z;
+    return {z, best};
+  }
+
+  // Calls f(item) for every item whose bucket meets `b` (items may repeat).
+  template <class F>
+  void for_each_near(const Box2& b, F&& f) const {
+    for (std::int64_t y = grid.clamp_y(b.min.y); y <= grid.clamp_y(b.max.y); ++y)
+      for (std::int64_t x = grid.clamp_x(b.min.x); x <= grid.clamp_x(b.max.x); ++x)
+        for (std::uint32_t i : grid.bucket(x, y)) f(i);
   }
 
   // Inverse-distance weighting of the k nearest footprints: continuous away from buildings, and
@@ -133,6 +166,66 @@ struct GroundModel::Impl {
     return wsum > 0 ? zsum / wsum : 0.0;
   }
 };
+
+std::pair<double, double> GroundModel::range_in(const std::array<Vec2, 3>& t) const {
+  double lo = kInf, hi = -kInf;
+  for (Vec2 c : t) {
+    const double z = at(c);
+    lo = std::min(lo, z), hi = std::max(hi, z);
+  }
+  Box2 box;
+  for (Vec2 c : t) box.extend(c);
+  const Vec2 centre = (1.0 / 3.0) * (t[0] + t[1] + t[2]);
+  double radius = 0;
+  for (Vec2 c : t) radius = std::max(radius, std::hypot(c.x - centre.x, c.y - centre.y));
+  const Impl& m = *impl_;
+  if (m.source == Source::Terrain) {
+    // Linear in every TIN triangle, so the extremes over the cell lie at vertices of the TIN
+    // triangles that meet it. A corner outside the TIN takes the height of its nearest TIN
+    // point; a point of the cell is then within (that distance + the cell's size) of it.
+    double reach = 0;
+    for (Vec2 c : t) reach = std::max(reach, m.terrain_nearest(c).second);
+    const Box2 near = reach > 0 ? box.grown(reach + 2 * radius) : box;
+    m.for_each_near(near, [&](std::uint32_t i) {
+      const Tri& tin = m.terrain[i];
+      Box2 b;
+      for (Vec2 v : tin.p) b.extend(v);
+      if (!b.overlaps(near)) return;
+      if (reach > 0) {  // part of the cell lies outside the TIN: every nearby vertex counts
+        for (double z : tin.z) lo = std::min(lo, z), hi = std::max(hi, z);
+        return;
+      }
+      // Over the part of the cell inside this TIN triangle the ground is one plane: its
+      // extremes lie at the corners of that part (the cell clipped by the triangle).
+      for (Vec2 q : clip_triangle(t, tin)) {
+        const double z = interpolate(tin, barycentric(tin, q));
+        lo = std::min(lo, z), hi = std::max(hi, z);
+      }
+    });
+  } else if (m.source == Source::Buildings && !m.uniform) {
+    // An inverse-distance weighting of the 4 nearest footprints lies between their grounds. The
+    // 4 nearest of any point of the cell are within d4(centre) + 2·radius of the centre.
+    std::array<double, 4> best;
+    best.fill(kInf);
+    ring_search(
+        m.grid, centre,
+        [&](std::uint32_t i) {
+          const double d = distance_to(m.footprints[i], centre);
+          if (d < best.back()) {
+            best.back() = d;
+            std::sort(best.begin(), best.end());
+          }
+        },
+        [&](double clearance) { return best.back() <= clearance; });
+    const double r = best.back() + 2 * radius;
+    if (std::isfinite(r))
+      m.for_each_near(box.grown(r), [&](std::uint32_t i) {
+        if (distance_to(m.footprints[i], centre) <= r)
+          lo = std::min(lo, m.footprint_ground[i]), hi = std::max(hi, m.footprint_ground[i]);
+      });
+  }
+  return {lo, hi};
+}
 
 GroundModel::GroundModel(const City& city) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;

@@ -13,6 +13,7 @@ const char* to_string(InputProblem p) {
     case InputProblem::MissingHeight: return "missing height";
     case InputProblem::EmptyCity: return "empty city";
     case InputProblem::UnsupportedFormat: return "unsupported format";
+    case InputProblem::Implausible: return "implausible input";
   }
   return "input error";
 }

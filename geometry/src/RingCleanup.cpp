@@ -4,10 +4,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "RingRepair.hpp"
 #include "urbanpvs/geometry/InputError.hpp"
 
 namespace urbanpvs::geometry {
 namespace {
+
+constexpr const char* kNonFinite = "coordinate is NaN or infinite";
+constexpr const char* kZeroArea = "ring has zero area";
 
 // Rings smaller than this (m²) cannot occlude anything and are almost always digitizing slips.
 constexpr double kMinRingArea = 1e-6;
@@ -65,7 +69,7 @@ bool adjacent(const Edge& e, const Edge& f) {
 // Repairs in place what needs no judgement; returns a reason when the ring is beyond repair.
 std::string repair_ring(Ring& r, bool outer, const RingContext& ctx, ReadReport& report) {
   for (Vec2 p : r)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return "coordinate is NaN or infinite";
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return kNonFinite;
   if (r.size() >= 2 && r.front() == r.back()) {
     r.pop_back();
   } else if (r.size() >= 3 && ctx.count_orientation) {
@@ -81,7 +85,7 @@ std::string repair_ring(Ring& r, bool outer, const RingContext& ctx, ReadReport&
   r = std::move(dedup);
   if (r.size() < 3) return "ring has fewer than 3 distinct points";
   const double a2 = signed_area2(r);
-  if (std::abs(a2) * 0.5 < kMinRingArea) return "ring has zero area";
+  if (std::abs(a2) * 0.5 < kMinRingArea) return kZeroArea;
   if ((a2 > 0) != outer) {
     std::reverse(r.begin(), r.end());
     if (ctx.count_orientation) ++report.repaired_orientation;
@@ -114,8 +118,8 @@ std::string polygon_defect(const Polygon& poly) {
         continue;
       }
       if (segments_meet(e.a, e.b, f.a, f.b)) {
-        const char* what = e.ring == f.ring ? "ring intersects itself near "
-                                            : "rings intersect each other near ";
+        const char* what =
+            e.ring == f.ring ? "ring intersects itself near " : "rings intersect each other near ";
         return what + point_text(e.a);
       }
     }
@@ -125,22 +129,56 @@ std::string polygon_defect(const Polygon& poly) {
   return {};
 }
 
-Polygon clean_polygon(std::vector<Ring> rings, const RingContext& ctx, ReadReport& report) {
-  auto fail = [&](const std::string& why) -> Polygon {
+std::vector<Polygon> clean_polygon(std::vector<Ring> rings, const RingContext& ctx,
+                                   ReadReport& report) {
+  auto fail = [&](const std::string& why) {
     throw InputError(InputProblem::InvalidGeometry, ctx.file, ctx.feature, why);
   };
-  if (rings.empty()) return fail("polygon has no ring");
+  if (rings.empty()) fail("polygon has no ring");
+  // Trivial repairs ring by ring; a ring left without area is dropped (an outer one takes the
+  // polygon with it), which is a geometric repair.
+  std::vector<std::string> defects;
   Polygon poly;
+  bool outer_lost = false;
   for (std::size_t i = 0; i < rings.size(); ++i) {
-    if (std::string why = repair_ring(rings[i], i == 0, ctx, report); !why.empty())
-      return fail(i == 0 ? why : "hole " + std::to_string(i) + ": " + why);
-    if (i == 0)
-      poly.outer = std::move(rings[0]);
-    else
-      poly.holes.push_back(std::move(rings[i]));
+    std::string why = repair_ring(rings[i], i == 0, ctx, report);
+    if (why == kNonFinite) fail(why);
+    if (why == kZeroArea) {
+      // Zero signed area: a bow-tie's lobes cancel, a spike folds flat. Kept for the winding
+      // fill, which finds what area there is; named by what is wrong with it.
+      const std::string defect = polygon_defect(Polygon{rings[i], {}});
+      defects.push_back((i == 0 ? "outer ring: " : "hole " + std::to_string(i) + ": ") + why +
+                        (defect.empty() ? "" : " (" + defect + ")"));
+      (i == 0 ? poly.outer : poly.holes.emplace_back()) = std::move(rings[i]);
+      continue;
+    }
+    if (!why.empty()) {
+      defects.push_back((i == 0 ? "outer ring: " : "hole " + std::to_string(i) + ": ") + why);
+      if (i == 0) outer_lost = true;
+      continue;
+    }
+    (i == 0 ? poly.outer : poly.holes.emplace_back()) = std::move(rings[i]);
   }
-  if (std::string why = polygon_defect(poly); !why.empty()) return fail(why);
-  return poly;
+  if (!outer_lost && defects.empty())
+    if (std::string why = polygon_defect(poly); !why.empty()) defects.push_back(why);
+  if (defects.empty()) return {std::move(poly)};
+  std::string what;
+  for (const std::string& d : defects) what += (what.empty() ? "" : "; ") + d;
+  if (ctx.strict) fail(what + " (--strict refuses repairs)");
+  std::vector<Polygon> pieces;
+  if (!outer_lost) {
+    std::vector<Ring> all{poly.outer};
+    all.insert(all.end(), poly.holes.begin(), poly.holes.end());
+    pieces = detail::fill_by_winding(all);
+  }
+  double before = outer_lost ? 0 : std::abs(signed_area2(poly.outer)) * 0.5, after = 0;
+  for (const Ring& h : poly.holes) before -= std::abs(signed_area2(h)) * 0.5;
+  for (const Polygon& p : pieces) after += area(p);
+  char line[160];
+  std::snprintf(line, sizeof line, " -> %zu simple piece%s, %.2f m2 (rings as given: %.2f m2)",
+                pieces.size(), pieces.size() == 1 ? "" : "s", after, before);
+  report.repairs.push_back(ctx.file + ": " + ctx.feature + ": " + what + line);
+  return pieces;
 }
 
 }  // namespace urbanpvs::geometry

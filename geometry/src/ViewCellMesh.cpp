@@ -25,10 +25,12 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <unordered_map>
 
 #include "BoxGrid.hpp"
 #include "FreeSpaceTriangulation.hpp"
+#include "WindingNumbers.hpp"
 
 namespace urbanpvs::geometry::detail {
 namespace {
@@ -36,10 +38,10 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_2;
 
-// Winding numbers of a face: how many obstacles and how many region polygons contain it.
+// Winding numbers of a face: how many obstacles (kind 0) and how many region polygons (kind 1)
+// contain it.
 struct FaceInfo {
-  int obstacle = 0;
-  int region = 0;
+  std::array<int, 2> winding{};
   bool seen = false;
   std::int32_t index = -1;  // output triangle, -1 for faces outside free space
 };
@@ -56,88 +58,58 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predi
 // The "plus" hierarchy remembers which input ring every constrained edge came from, also after
 // the mesher split it: that is what the winding numbers are computed from.
 using Cdtp = CGAL::Constrained_triangulation_plus_2<Cdt>;
-using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Cdtp>;
-using Mesher = CGAL::Delaunay_mesher_2<Cdtp, Criteria>;
+using SizeCriteria = CGAL::Delaunay_mesh_size_criteria_2<Cdtp>;
+
+// Shewchuk's shape bound with a floor: Delaunay refinement does not terminate well near small
+// input angles (it chases them into ever smaller triangles), so a triangle whose shortest edge
+// is already below `min_edge` is left as it is. A badly shaped cell is still a valid cell for
+// point location and sampling; the size bound still holds everywhere.
+class CellCriteria : public SizeCriteria {
+ public:
+  CellCriteria(double shape_bound, double max_edge, double min_edge)
+      : SizeCriteria(shape_bound, max_edge), min_edge_(min_edge) {}
+
+  class Is_bad : public SizeCriteria::Is_bad {
+   public:
+    Is_bad(const SizeCriteria::Is_bad& base, double min_edge)
+        : SizeCriteria::Is_bad(base), squared_min_edge_(min_edge * min_edge) {}
+    using SizeCriteria::Is_bad::operator();
+    CGAL::Mesh_2::Face_badness operator()(const Face_handle& f, Quality& q) const {
+      const CGAL::Mesh_2::Face_badness b = SizeCriteria::Is_bad::operator()(f, q);
+      if (b != CGAL::Mesh_2::BAD) return b;
+      double shortest = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k)
+        shortest = std::min(shortest, CGAL::squared_distance(f->vertex(k)->point(),
+                                                             f->vertex(Cdtp::ccw(k))->point()));
+      if (shortest >= squared_min_edge_) return b;
+      q.first = 1;  // a quality that reads as well shaped when the mesher looks at it again
+      return CGAL::Mesh_2::NOT_BAD;
+    }
+
+   private:
+    double squared_min_edge_;
+  };
+
+  Is_bad is_bad_object() const { return Is_bad(SizeCriteria::is_bad_object(), min_edge_); }
+
+ private:
+  double min_edge_;
+};
+using Mesher = CGAL::Delaunay_mesher_2<Cdtp, CellCriteria>;
 using Vertex_handle = Cdtp::Vertex_handle;
 using Face_handle = Cdtp::Face_handle;
 
 enum Kind { kObstacle = 0, kRegion = 1 };
+using CdtRing = RingConstraint<Cdtp>;
 
-struct RingConstraint {
-  Cdtp::Constraint_id id;
-  Kind kind;
-  int sign = 1;  // +1 when the ring's inside (polygon side) is on its left
-};
-
-struct PairHash {
-  std::size_t operator()(const std::pair<const void*, const void*>& p) const {
-    const auto a = reinterpret_cast<std::uintptr_t>(p.first);
-    const auto b = reinterpret_cast<std::uintptr_t>(p.second);
-    return std::hash<std::uintptr_t>()(a * 0x9E3779B97F4A7C15ull ^ b);
-  }
-};
-
-// For every constrained edge {u, w}: the number of ring edges running u→w minus those running
-// w→u, per kind, with u the vertex at the lower address. Rings have their inside on the left
-// (outer CCW, holes CW), so crossing u→w from its left to its right lowers the winding by this.
-using NetCrossings =
-    std::unordered_map<std::pair<const void*, const void*>, std::array<int, 2>, PairHash>;
-
-NetCrossings net_crossings(const Cdtp& cdt, const std::vector<RingConstraint>& rings) {
-  NetCrossings net;
-  for (const RingConstraint& r : rings) {
-    Vertex_handle prev;
-    for (Vertex_handle v : cdt.vertices_in_constraint(r.id)) {
-      if (prev != Vertex_handle() && prev != v) {
-        const void* a = &*prev;
-        const void* b = &*v;
-        if (a < b)
-          net[{a, b}][r.kind] += r.sign;
-        else
-          net[{b, a}][r.kind] -= r.sign;
-      }
-      prev = v;
-    }
-  }
-  return net;
-}
-
-// Thesis 5.3 asks for cells in free space only. A flood fill from the infinite face (winding 0)
-// adds the net ring crossings at every constrained edge; free space is inside some region ring
-// (region > 0) and inside no footprint (obstacle == 0). This generalises the usual "odd nesting
-// level" marking to overlapping and nested footprints.
-void classify(Cdtp& cdt, const std::vector<RingConstraint>& rings) {
-  const NetCrossings net = net_crossings(cdt, rings);
-  for (Face_handle f : cdt.all_face_handles()) f->info() = FaceInfo{};
-  std::deque<Face_handle> queue{cdt.infinite_face()};
-  cdt.infinite_face()->info().seen = true;
-  while (!queue.empty()) {
-    const Face_handle f = queue.front();
-    queue.pop_front();
-    for (int i = 0; i < 3; ++i) {
-      const Face_handle n = f->neighbor(i);
-      if (n->info().seen) continue;
-      FaceInfo next = f->info();
-      if (f->is_constrained(i)) {
-        const void* u = &*f->vertex(Cdtp::ccw(i));  // f lies left of u→w
-        const void* w = &*f->vertex(Cdtp::cw(i));
-        const bool forward = u < w;
-        if (auto it = net.find(forward ? std::make_pair(u, w) : std::make_pair(w, u));
-            it != net.end()) {
-          const int sign = forward ? 1 : -1;
-          next.obstacle -= sign * it->second[kObstacle];
-          next.region -= sign * it->second[kRegion];
-        }
-      }
-      next.seen = true;
-      n->info() = next;
-      queue.push_back(n);
-    }
-  }
+// Thesis 5.3 asks for cells in free space only: inside some region ring and inside no
+// footprint (WindingNumbers.hpp).
+void classify(Cdtp& cdt, const std::vector<CdtRing>& rings) {
+  classify_windings(cdt, rings);
 }
 
 bool is_free(const Cdtp& cdt, Face_handle f) {
-  return !cdt.is_infinite(f) && f->info().obstacle == 0 && f->info().region > 0;
+  return !cdt.is_infinite(f) && f->info().winding[kObstacle] == 0 && f->info().winding[kRegion] > 0;
 }
 
 Point to_point(Vec2 v) {
@@ -259,7 +231,7 @@ std::vector<Point> ring_points(const Ring& r) {
 
 // Any orientation is accepted: a ring counts +1 inside when it is an outer ring, -1 inside when
 // it is a hole, whichever way it runs.
-void insert_polygon(Cdtp& cdt, const Polygon& poly, Kind kind, std::vector<RingConstraint>& out) {
+void insert_polygon(Cdtp& cdt, const Polygon& poly, Kind kind, std::vector<CdtRing>& out) {
   auto insert_ring = [&](const Ring& r, bool hole) {
     const std::vector<Point> pts = ring_points(r);
     const Cdtp::Constraint_id id = cdt.insert_constraint(pts.begin(), pts.end(), /*close=*/true);
@@ -305,7 +277,7 @@ double triangle_area(const Face_handle f) {
 
 FreeSpaceTriangulation triangulate_free_space(const std::vector<Polygon>& region,
                                               const std::vector<const Polygon*>& obstacles,
-                                              double max_edge, double shape_bound,
+                                              double max_edge, double shape_bound, double min_edge,
                                               double narrow_gap) {
   FreeSpaceTriangulation out;
   auto t0 = std::chrono::steady_clock::now();
@@ -317,7 +289,7 @@ FreeSpaceTriangulation triangulate_free_space(const std::vector<Polygon>& region
   std::vector<std::pair<Point, Point>> boundary;
   {
     Cdtp all;
-    std::vector<RingConstraint> rings;
+    std::vector<CdtRing> rings;
     for (const Polygon& r : region) insert_polygon(all, r, kRegion, rings);
     for (const Polygon* p : obstacles)
       if (bounds(*p).overlaps(region_box)) {
@@ -347,7 +319,7 @@ FreeSpaceTriangulation triangulate_free_space(const std::vector<Polygon>& region
 
   // Pass 2: the domain's boundary alone, each edge with the domain on its left.
   Cdtp cdt;
-  std::vector<RingConstraint> rings;
+  std::vector<CdtRing> rings;
   rings.reserve(boundary.size());
   for (const auto& [a, b] : boundary)
     if (const Cdtp::Constraint_id id = cdt.insert_constraint(a, b);
@@ -358,7 +330,7 @@ FreeSpaceTriangulation triangulate_free_space(const std::vector<Polygon>& region
 
   t0 = std::chrono::steady_clock::now();
   for (Face_handle f : cdt.all_face_handles()) f->set_in_domain(is_free(cdt, f));
-  Mesher mesher(cdt, Criteria(shape_bound, max_edge));
+  Mesher mesher(cdt, CellCriteria(shape_bound, max_edge, min_edge));
   mesher.init(/*domain_specified=*/true);
   mesher.refine_mesh();
   // The mesher split constrained edges; the hierarchy followed, so classify again from scratch

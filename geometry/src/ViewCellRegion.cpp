@@ -90,7 +90,8 @@ class RegionReader {
       rings.push_back(std::move(r));
     }
     ReadReport report;
-    polygons_.push_back(clean_polygon(std::move(rings), {name_, where, true}, report));
+    for (Polygon& p : clean_polygon(std::move(rings), {name_, where, true}, report))
+      polygons_.push_back(std::move(p));
   }
 
   std::string name_;

@@ -11,8 +11,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "BoundarySimplification.hpp"
 #include "FreeSpaceTriangulation.hpp"
 #include "urbanpvs/geometry/GroundHeight.hpp"
+#include "urbanpvs/geometry/PolygonOffset.hpp"
+#include "urbanpvs/geometry/PolygonUnion.hpp"
 #include "urbanpvs/geometry/RingCleanup.hpp"
 #include "urbanpvs/geometry/ViewCellSamples.hpp"
 
@@ -38,6 +41,33 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Free space as a viewer meets it, not as the data's noise draws it (thesis 5.3). Real
+// footprints overlap by a few cm, leave walls a few mm apart and repeat vertices a mm apart;
+// meshed as they are, each of those features is refined into cells as small as itself. Grown
+// by gap/2 (walls closer than the block gap tolerance merge, as in the blocks), fused exactly,
+// then grown by snap more and simplified within snap: the result still contains every
+// footprint (the simplification moves no boundary by more than snap), so no cell enters a
+// building, and no two of its features are closer than the tolerances.
+std::vector<Polygon> cleaned_obstacles(const City& city, const ViewCellOptions& options) {
+  const double grow = 0.5 * options.gap + options.snap;
+  std::vector<Polygon> grown;
+  for (const CityObject& o : city.objects)
+    for (Polygon p : o.footprint) {
+      // Footprints built by hand may run either way; offsets and unions need outer CCW,
+      // holes CW.
+      if (signed_area2(p.outer) < 0) std::reverse(p.outer.begin(), p.outer.end());
+      for (Ring& h : p.holes)
+        if (signed_area2(h) > 0) std::reverse(h.begin(), h.end());
+      if (!(grow > 0)) {
+        grown.push_back(p);
+        continue;
+      }
+      for (Polygon& g : grow_polygon(p, grow)) grown.push_back(std::move(g));
+    }
+  if (grown.empty()) return grown;
+  return detail::simplify_boundaries(union_polygons(grown), options.snap);
+}
+
 }  // namespace
 
 void validate(const ViewCellOptions& o) {
@@ -47,6 +77,9 @@ void validate(const ViewCellOptions& o) {
   check_range("margin", o.margin, 0.0, 1e5);
   check_range("epsilon", o.epsilon, 0.01, 1e3);
   check_range("narrow_gap", o.narrow_gap, 0.0, 1.0);
+  check_range("gap", o.gap, 0.0, 10.0);
+  check_range("snap", o.snap, 0.0, 10.0);
+  check_range("min_cell_edge", o.min_cell_edge, 0.0, 1e4);
   for (std::size_t i = 0; i < o.region.size(); ++i) {
     bool finite = true;
     for_each_edge(o.region[i], [&](Vec2 a, Vec2) { finite = finite && std::isfinite(a.x + a.y); });
@@ -80,11 +113,16 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
       if (signed_area2(h) > 0) std::reverse(h.begin(), h.end());
   }
   if (mesh.options.region.empty()) {
-    const Box2 b = city.bounds().xy;
-    if (b.empty())
+    // Within `margin` of some building: for a dense city its bounding rectangle, for
+    // scattered data (49 Zürich buildings over 10 km) the neighbourhoods of the buildings
+    // alone, not 90 km² of fields between them.
+    std::vector<Polygon> near;
+    for (const CityObject& o : city.objects)
+      if (!o.bbox.xy.empty()) near.push_back(rectangle(o.bbox.xy.grown(options.margin)));
+    if (near.empty())
       throw std::invalid_argument(
           "ViewCellOptions.region: the city has no buildings to take a default region from");
-    mesh.options.region.push_back(rectangle(b.grown(options.margin)));
+    mesh.options.region = options.margin > 0 ? union_polygons(near) : near;
   }
   Box2 region_box;
   for (const Polygon& r : mesh.options.region) region_box.extend(bounds(r));
@@ -95,11 +133,12 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
         "ViewCellOptions.max_cell_edge = " + std::to_string(options.max_cell_edge) +
         " would give tens of millions of cells for this region");
 
+  const std::vector<Polygon> cleaned = cleaned_obstacles(city, options);
   std::vector<const Polygon*> obstacles;
-  for (const CityObject& o : city.objects)
-    for (const Polygon& p : o.footprint) obstacles.push_back(&p);
+  for (const Polygon& p : cleaned) obstacles.push_back(&p);
   detail::FreeSpaceTriangulation tri = detail::triangulate_free_space(
-      mesh.options.region, obstacles, options.max_cell_edge, kCellShapeBound, options.narrow_gap);
+      mesh.options.region, obstacles, options.max_cell_edge, kCellShapeBound,
+      std::min(options.min_cell_edge, 0.5 * options.max_cell_edge), options.narrow_gap);
 
   const GroundModel ground(city);
   mesh.vertices = std::move(tri.vertices);
@@ -119,8 +158,11 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
       hi = std::max(hi, cell.ground[k]);
       mesh.bounds.extend(cell.corner[k]);
     }
-    cell.zmin = lo + options.eye_min;
-    cell.zmax = hi + options.eye_max;
+    // The ground may rise inside the cell above its corners (a crest, a terrain vertex): the
+    // top must clear the highest ground in it, else a viewpoint there sees over the samples.
+    const auto [ground_lo, ground_hi] = ground.range_in(cell.corner);
+    cell.zmin = std::min(lo, ground_lo) + options.eye_min;
+    cell.zmax = std::max(hi, ground_hi) + options.eye_max;
     cell.neighbour = tri.neighbours[c];
     mesh.free_area += 0.5 * cross(cell.corner[1] - cell.corner[0], cell.corner[2] - cell.corner[0]);
   }

@@ -107,6 +107,15 @@ int main(int argc, char** argv) {
   app.add_option("--narrow-gap", options.narrow_gap,
                  "Leave out slivers of free space thinner than this along walls (m; 0: none)")
       ->capture_default_str();
+  app.add_option("--snap", options.snap,
+                 "Free space's boundary is cleaned within this many m (near-duplicate points, "
+                 "walls closer than it)")
+      ->capture_default_str();
+  app.add_option("--min-cell-edge", options.min_cell_edge,
+                 "Cells whose shortest edge is below this many m are not refined for shape")
+      ->capture_default_str();
+  app.add_option("--gap", options.gap, "Footprints closer than this many m fuse")
+      ->capture_default_str();
   app.add_option("--region", region, "GeoJSON Polygon/MultiPolygon to subdivide (city's CRS)")
       ->check(CLI::ExistingFile);
   app.add_option("--default-height", default_height,

@@ -55,7 +55,20 @@ void print_summary(const City& city, const std::vector<Block>& blocks,
       "heights:     %zu from building:levels, %zu default, %zu LoD2 footprints from roofs\n",
       r.repaired_duplicate_points, r.repaired_orientation, r.repaired_unclosed, r.level_heights,
       r.default_heights, r.footprints_from_roof);
-  if (r.skipped_invalid) std::printf("skipped:     %zu invalid objects\n", r.skipped_invalid);
+  // Thesis 7.1: where an occluder was kept smaller than the building, or none was made.
+  std::printf(
+      "cut:         %zu GeoJSON occluders cut to the eaves (roof:shape), %zu raised parts without "
+      "occluder,\n"
+      "             %zu footprints from walls under an overhanging roof, %zu parts without "
+      "footprint\n"
+      "terrain:     %zu GeoJSON objects set on the terrain; %zu installations merged into "
+      "buildings\n",
+      r.roof_eaves, r.raised_parts, r.footprints_from_walls, r.footprints_unknown, r.on_terrain,
+      r.installations);
+  std::printf("repairs:     %zu geometric repairs, %zu objects that occlude nothing\n",
+              r.repairs.size(), r.non_occluding.size());
+  for (const std::string& line : r.repairs) std::printf("  repaired: %s\n", line.c_str());
+  for (const std::string& line : r.non_occluding) std::printf("  no occluder: %s\n", line.c_str());
   const Box3 b = city.bounds();
   LocalFrameMapping mapping(city.frame);
   const auto lo = mapping.to_input(b.xy.min.x, b.xy.min.y, b.zmin);
@@ -91,15 +104,17 @@ std::string svg_of(const City& city, const std::vector<Block>& blocks,
   for (const Block& b : blocks)
     for (const Polygon& p : b.levels.front().region)
       map.polygon(p, "fill:none;stroke:#036;stroke-width:1");
-  for (const Occluder& o : occluders) map.polygon(o.shape, "fill:#c33;fill-opacity:0.15;stroke:none");
+  for (const Occluder& o : occluders)
+    map.polygon(o.shape, "fill:#c33;fill-opacity:0.15;stroke:none");
   return map.str();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Reads city models (CityJSON 1.1/2.0, GeoJSON) and reports objects, heights, "
-               "blocks and shrunk occluders."};
+  CLI::App app{
+      "Reads city models (CityJSON 1.1/2.0, GeoJSON) and reports objects, heights, "
+      "blocks and shrunk occluders."};
   std::vector<std::string> files;
   ReadOptions read;
   BlockOptions block_options;
@@ -114,7 +129,10 @@ int main(int argc, char** argv) {
   app.add_option("--coordinates", coordinates, "GeoJSON coordinates: auto, geographic, projected")
       ->check(CLI::IsMember({"auto", "geographic", "projected"}))
       ->capture_default_str();
-  app.add_flag("--skip-invalid", read.skip_invalid, "Drop buildings with invalid geometry");
+  app.add_flag("--strict", read.strict,
+               "Refuse geometry that needs repair instead of repairing it");
+  app.add_flag("--skip-invalid")
+      ->description("Accepted for old scripts; buildings are now always kept");
   app.add_option("--epsilon", epsilon, "Occluder shrinking distance in m")->capture_default_str();
   app.add_option("--gap", block_options.gap_tolerance,
                  "Gaps between footprints narrower than this (m) are closed")

@@ -36,7 +36,7 @@ ReadOptions options_for(std::string_view text) {
   ReadOptions o;
   const unsigned char k = text.empty() ? 0 : static_cast<unsigned char>(text.front());
   if (k & 1) o.default_height = 10.0;
-  o.skip_invalid = (k & 2) != 0;
+  o.strict = (k & 2) != 0;
   o.coordinates = (k & 12) == 4   ? ReadOptions::Coordinates::Geographic
                   : (k & 12) == 8 ? ReadOptions::Coordinates::Projected
                                   : ReadOptions::Coordinates::Auto;

@@ -17,7 +17,9 @@
 #include "urbanpvs/cities/cityjson_writer.hpp"
 #include "urbanpvs/geometry/CellLocator.hpp"
 #include "urbanpvs/geometry/CityReader.hpp"
+#include "urbanpvs/geometry/GroundHeight.hpp"
 #include "urbanpvs/geometry/InputError.hpp"
+#include "urbanpvs/geometry/PolygonOffset.hpp"
 #include "urbanpvs/geometry/PolygonUnion.hpp"
 #include "urbanpvs/geometry/ViewCellRegion.hpp"
 #include "urbanpvs/geometry/ViewCellSamples.hpp"
@@ -195,10 +197,19 @@ std::vector<Polygon> all_footprints(const City& city) {
 // ---- the checks -------------------------------------------------------------------------------
 
 // Free space = region minus the union of footprints, computed without the triangulation:
-// area(R \ U) = area(R ∪ U) - area(U), both from the exact Boolean union.
+// area(R \ U) = area(R ∪ U) - area(U), both from the exact Boolean union. The cells cover it
+// but for a band along the walls: footprints grow by gap/2 + snap and are simplified within
+// snap before meshing (ViewCellOptions), so the cells lose at most the area of the footprints
+// grown by gap/2 + 2·snap (mitred: an overestimate), plus the slivers left out.
 void check_area(const City& city, const ViewCellMesh& m) {
   std::vector<Polygon> fp = all_footprints(city);
   const double union_area = polygons_area(union_polygons(fp));
+  std::vector<Polygon> grown;
+  const double band = 0.5 * m.options.gap + 2 * m.options.snap;
+  for (const Polygon& p : fp)
+    for (Polygon& g : band > 0 ? grow_polygon(p, band) : std::vector<Polygon>{p})
+      grown.push_back(std::move(g));
+  const double band_area = polygons_area(union_polygons(grown)) - union_area;
   fp.insert(fp.end(), m.options.region.begin(), m.options.region.end());
   const double free = polygons_area(union_polygons(fp)) - union_area;
   double cells = 0;
@@ -208,9 +219,9 @@ void check_area(const City& city, const ViewCellMesh& m) {
     cells += a;
   }
   EXPECT_NEAR(cells, m.free_area, 1e-9 * free);
-  EXPECT_NEAR(cells, free, 1e-6 * free) << "slivers left out: " << m.stats.sliver_area;
-  // With the slivers accounted for, the two computations agree far more closely.
-  EXPECT_NEAR(cells + m.stats.sliver_area, free, 1e-8 * free);
+  EXPECT_LE(cells, free * (1 + 1e-9));
+  EXPECT_GE(cells + m.stats.sliver_area, free - band_area - 1e-6 * free)
+      << "the cells lose more than the band along the walls";
 }
 
 // No cell overlaps a footprint, and every cell lies in the region: both decided exactly.
@@ -245,9 +256,9 @@ void check_no_overlap(const City& city, const ViewCellMesh& m) {
   testing::Test::RecordProperty("exact_overlap_tests", std::to_string(exact_tests));
 }
 
-// Edges within max_cell_edge; angles at least kMinCellAngleDeg except next to a corner of free
-// space sharper than 60°, where (as measured on every test city) the cell keeps at least half
-// that corner's angle.
+// Edges within max_cell_edge; angles at least kMinCellAngleDeg except in cells whose shortest edge
+// is below min_cell_edge, or next to a corner of free space sharper than 60°, where (as
+// measured on every test city) the cell keeps at least half that corner's angle.
 void check_edges_and_angles(const ViewCellMesh& m) {
   std::vector<double> corner_angle(m.vertices.size(), 0);
   std::vector<char> on_boundary(m.vertices.size(), 0);
@@ -275,7 +286,13 @@ void check_edges_and_angles(const ViewCellMesh& m) {
     const double angle = min_angle_deg(c.corner);
     if (angle >= kMinCellAngleDeg) continue;
     ++skinny;
-    bool explained = false;
+    double shortest = longest;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec2 d = c.corner[(k + 1) % 3] - c.corner[k];
+      shortest = std::min(shortest, std::hypot(d.x, d.y));
+    }
+    // The mesher leaves small cells as they are (ViewCellOptions::min_cell_edge).
+    bool explained = shortest < m.options.min_cell_edge;
     for (std::size_t v : sharp)
       for (Vec2 p : c.corner)
         if (std::hypot(p.x - m.vertices[v].x, p.y - m.vertices[v].y) <= 2 * longest &&
@@ -333,8 +350,9 @@ void check_samples(const ViewCellMesh& m) {
       ASSERT_TRUE((e.vertex[0] == u && e.vertex[1] == w) || (e.vertex[0] == w && e.vertex[1] == u));
       ASSERT_TRUE(e.cell[0] == std::int32_t(c) || e.cell[1] == std::int32_t(c));
     }
-    ASSERT_EQ(cell.zmin, lo + m.options.eye_min);
-    ASSERT_EQ(cell.zmax, hi + m.options.eye_max);
+    // The ground inside may lie beyond the corners' (TopClearsTheHighestGroundInsideTheCell).
+    ASSERT_LE(cell.zmin, lo + m.options.eye_min);
+    ASSERT_GE(cell.zmax, hi + m.options.eye_max);
   }
 }
 
@@ -429,8 +447,9 @@ TEST(ViewCells, GeneratedQuarterKm2TwoSeeds) {
   for (std::uint64_t seed : {3u, 11u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const ViewCellMesh m = check_all(generated(0.25, seed), {}, 20000);
-    // Shared walls are bit-identical in generated cities: nothing to leave out.
-    EXPECT_EQ(m.stats.sliver_faces, 0u);
+    // Shared walls are bit-identical in generated cities and fuse before meshing: at most a
+    // few rounding slivers to leave out.
+    EXPECT_LT(m.stats.sliver_area, 0.01);
   }
 }
 
@@ -456,10 +475,9 @@ TEST(ViewCells, Helsinki) {
   const std::optional<City> city = shared_city("helsinki_buildings.geojson", 12.0);
   if (!city) GTEST_SKIP() << "helsinki_buildings.geojson is absent";
   const ViewCellMesh m = check_all(*city, {}, 20000);
-  // One sliver of 0.1 mm between two nearly collinear walls would otherwise be refined into
-  // ~97,000 cells (measured); it is left out and accounted for.
-  EXPECT_GT(m.stats.sliver_faces, 0u);
-  EXPECT_LT(m.cells.size(), 60000u);
+  // One sliver of 0.1 mm between two nearly collinear walls was once refined into ~97,000 cells
+  // (measured); the footprints now fuse across it before meshing. 16,825 cells measured.
+  EXPECT_LT(m.cells.size(), 20000u);
 }
 
 // ---- footprints that touch, overlap and nest --------------------------------------------------
@@ -546,8 +564,13 @@ TEST(ViewCells, GroundFromTerrain) {
     ASSERT_NEAR(m.vertex_ground[i], expect, 1e-9) << p.x << "," << p.y;
   }
   for (const ViewCell& c : m.cells) {
-    ASSERT_NEAR(c.zmin, std::min({c.ground[0], c.ground[1], c.ground[2]}) + 0.5, 1e-12);
-    ASSERT_NEAR(c.zmax, std::max({c.ground[0], c.ground[1], c.ground[2]}) + 1.5, 1e-12);
+    ASSERT_LE(c.zmin, std::min({c.ground[0], c.ground[1], c.ground[2]}) + 0.5 + 1e-12);
+    ASSERT_GE(c.zmax, std::max({c.ground[0], c.ground[1], c.ground[2]}) + 1.5 - 1e-12);
+    // On one plane the extremes are at the corners: exact for cells inside the TIN.
+    if (std::min({c.corner[0].x, c.corner[1].x, c.corner[2].x}) >= 0) {
+      ASSERT_NEAR(c.zmin, std::min({c.ground[0], c.ground[1], c.ground[2]}) + 0.5, 1e-9);
+      ASSERT_NEAR(c.zmax, std::max({c.ground[0], c.ground[1], c.ground[2]}) + 1.5, 1e-9);
+    }
   }
   // Samples are level at the top of the cells they serve, never below the eye band's top over
   // the ground beneath them (the top of every prism they stand for).
@@ -563,6 +586,51 @@ TEST(ViewCells, GroundFromTerrain) {
   }
 }
 
+// Issue 11, point 5: a cell's top clears the highest ground anywhere in it, not only at its
+// corners. A TIN with a sharp crest (a ridge of vertices 6 m above the corners' plane) inside
+// large cells: every viewpoint a cell holds, up to eye_max above the ground under it, must lie
+// at or below the cell's top (the samples sit there; thesis 5.3).
+TEST(ViewCells, TopClearsTheHighestGroundInsideTheCell) {
+  std::vector<CityObject> objects;
+  objects.push_back(building({box(0, 0, 10, 10)}, 0));
+  City city = city_of(std::move(objects));
+  // A pyramid: four triangles around a peak 6 m up at (63.3, 47.1), where no cell corner
+  // sits; the base is at z = 0.
+  auto v = [](double x, double y) {
+    return std::array<double, 3>{x, y, x == 63.3 && y == 47.1 ? 6.0 : 0.0};
+  };
+  const std::array<std::array<double, 2>, 4> ring{
+      {{33.3, 17.1}, {93.3, 17.1}, {93.3, 77.1}, {33.3, 77.1}}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto a = ring[k], b = ring[(k + 1) % 4];
+    city.terrain.triangles.push_back({{v(a[0], a[1]), v(b[0], b[1]), v(63.3, 47.1)}});
+  }
+  ViewCellOptions o;
+  o.max_cell_edge = 60;  // cells larger than the hill
+  o.region.push_back(box(33.3, 17.1, 93.3, 77.1));
+  const ViewCellMesh m = build_view_cells(city, o);
+  ASSERT_FALSE(m.cells.empty());
+  const GroundModel ground(city);  // point evaluation, checked in GroundFromTerrain
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::size_t checked = 0, above_corners = 0;
+  for (const ViewCell& c : m.cells) {
+    const double corner_top = std::max({c.ground[0], c.ground[1], c.ground[2]}) + o.eye_max;
+    for (int i = 0; i < 400; ++i) {
+      double a = u(rng), b = u(rng);
+      if (a + b > 1) a = 1 - a, b = 1 - b;
+      const Vec2 p =
+          c.corner[0] + a * (c.corner[1] - c.corner[0]) + b * (c.corner[2] - c.corner[0]);
+      const double eye = ground.at(p) + o.eye_max;
+      ASSERT_LE(eye, c.zmax + 1e-9) << "viewpoint above the cell's top at " << p.x << "," << p.y;
+      ++checked;
+      above_corners += eye > corner_top + 1e-6;
+    }
+  }
+  // Not vacuous: tops taken from the corners alone would leave these viewpoints above them.
+  EXPECT_GT(above_corners, 100u) << checked;
+}
+
 TEST(ViewCells, GroundFromBuildingsOnTheirWalls) {
   std::vector<CityObject> objects;
   objects.push_back(building({box(0, 0, 10, 10)}, 100));
@@ -575,16 +643,20 @@ TEST(ViewCells, GroundFromBuildingsOnTheirWalls) {
   double lo = 1e300, hi = -1e300;
   for (std::size_t i = 0; i < m.vertices.size(); ++i) {
     const Vec2 p = m.vertices[i];
-    if (p.x >= 0 && p.x <= 10 && p.y >= 0 && p.y <= 10) {
-      EXPECT_EQ(m.vertex_ground[i], 100);
+    // Cells keep gap/2 + snap = 0.275 m from the walls: there the nearest building's ground
+    // outweighs the other's (30 m away) by about (30 / 0.275)².
+    if (p.x >= -0.5 && p.x <= 10.5 && p.y >= -0.5 && p.y <= 10.5) {
+      EXPECT_NEAR(m.vertex_ground[i], 100, 0.01);
     }
-    if (p.x >= 40 && p.x <= 50 && p.y >= 0 && p.y <= 10) {
-      EXPECT_EQ(m.vertex_ground[i], 110);
+    if (p.x >= 39.5 && p.x <= 50.5 && p.y >= -0.5 && p.y <= 10.5) {
+      EXPECT_NEAR(m.vertex_ground[i], 110, 0.01);
     }
     lo = std::min(lo, m.vertex_ground[i]), hi = std::max(hi, m.vertex_ground[i]);
   }
-  EXPECT_EQ(lo, 100);
-  EXPECT_EQ(hi, 110);
+  EXPECT_GE(lo, 100);
+  EXPECT_LE(hi, 110);
+  EXPECT_NEAR(lo, 100, 0.01);
+  EXPECT_NEAR(hi, 110, 0.01);
 }
 
 // ---- samples, options, regions, determinism ---------------------------------------------------
@@ -680,8 +752,11 @@ TEST(ViewCellRegion, ReadsGeoJsonInTheCityFrame) {
   EXPECT_EQ(problem("{"), InputProblem::InvalidJson);
   EXPECT_EQ(problem(R"({"type":"FeatureCollection","features":[]})"), InputProblem::EmptyCity);
   EXPECT_EQ(problem(R"({"type":"Polygon"})"), InputProblem::BadStructure);
-  EXPECT_EQ(problem(R"({"type":"Polygon","coordinates":[[[0,0],[1,1],[1,0],[0,1]]]})"),
-            InputProblem::InvalidGeometry);
+  // A bow-tie region is repaired into its two triangles (RingCleanup), not refused.
+  EXPECT_EQ(read_region_text(R"({"type":"Polygon","coordinates":[[[0,0],[1,1],[1,0],[0,1]]]})",
+                             "r.geojson", frame)
+                .size(),
+            2u);
   EXPECT_EQ(problem(R"({"type":"Polygon","crs":{"type":"name","properties":{"name":"EPSG:4326"}},
                         "coordinates":[[[0,0],[1,0],[1,1]]]})"),
             InputProblem::UnknownCrs);

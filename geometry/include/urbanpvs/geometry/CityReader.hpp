@@ -20,8 +20,17 @@ struct ReadOptions {
   double level_height = 3.0;
   /// How GeoJSON coordinates are read; Auto decides from the "crs" member, else from the range.
   enum class Coordinates { Auto, Geographic, Projected } coordinates = Coordinates::Auto;
-  /// Drop buildings with invalid geometry (counted and warned) instead of failing.
-  bool skip_invalid = false;
+  /// Refuse input that needs geometric repair (InputError(InvalidGeometry)) instead of
+  /// repairing it, or keeping a building beyond repair as a non-occluding object.
+  bool strict = false;
+  /// The tallest plausible building above its ground. Taller input is refused
+  /// (InputError(Implausible)); objects of unknown height are tested for visibility up to it,
+  /// as tall as they may be. [Units: m] [Limit: > 0]
+  double max_height = 1000.0;
+  /// The largest plausible extent of a city (either side of its bounding rectangle); larger
+  /// input is refused (InputError(Implausible)) rather than baked for hours. [Units: m]
+  /// [Limit: > 0]
+  double max_extent = 300000.0;
 };
 
 /// Reads every file into one city (all files must share one coordinate reference system).
@@ -29,6 +38,7 @@ struct ReadOptions {
 City read_city(const std::vector<std::string>& paths, const ReadOptions& options = {});
 
 /// Reads a city from text held in memory; `name` stands for the file in messages.
-City read_city_text(std::string_view text, const std::string& name, const ReadOptions& options = {});
+City read_city_text(std::string_view text, const std::string& name,
+                    const ReadOptions& options = {});
 
 }  // namespace urbanpvs::geometry

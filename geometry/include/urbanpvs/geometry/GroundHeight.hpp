@@ -3,7 +3,9 @@
 // (thesis 5.3), so the ground decides the cells' z range and the height of their samples.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <utility>
 
 #include "urbanpvs/geometry/CityModel.hpp"
 
@@ -26,6 +28,11 @@ class GroundModel {
   /// Ground height (absolute) at p. Continuous within the terrain; on a footprint's boundary the
   /// building's own ground_z.
   double at(Vec2 p) const;
+
+  /// Bounds (lowest, highest) on the ground anywhere in triangle `t`, not only at its corners
+  /// (thesis 5.3: a cell's top lies eye_max above the ground under every viewpoint it holds).
+  /// Exact at the corners' heights on flat ground; never narrower than the ground there.
+  std::pair<double, double> range_in(const std::array<Vec2, 3>& t) const;
 
   Source source() const;
 

@@ -17,10 +17,13 @@ enum class InputProblem {
   MissingHeight = 15,    ///< no height attribute and no default height given
   EmptyCity = 16,        ///< no building in the input
   UnsupportedFormat = 17,
+  Implausible = 18,  ///< far outside what a city can be (a building 10 km tall)
 };
 
 /// The exit code a command returns for an InputError (distinct per problem).
-inline int exit_code(InputProblem p) { return static_cast<int>(p); }
+inline int exit_code(InputProblem p) {
+  return static_cast<int>(p);
+}
 
 const char* to_string(InputProblem p);
 

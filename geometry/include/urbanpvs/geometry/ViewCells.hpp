@@ -25,12 +25,12 @@ struct ViewCellOptions {
   double max_cell_edge = 18.0;
   /// Bottom of the eye band above the ground. [Units: m] [Limit: 0 .. eye_max]
   double eye_min = 0.0;
-  /// Top of the eye band above the ground. A cell's prism reaches this far above its highest
-  /// corner; its samples sit level at that top (thesis 5.3). [Units: m]
+  /// Top of the eye band above the ground. A cell's prism reaches this far above the highest
+  /// ground in it; its samples sit level at that top (thesis 5.3). [Units: m]
   /// [Limit: eye_min .. 1000]
   double eye_max = 2.0;
-  /// Margin around the buildings' bounding rectangle that forms the default region (ignored when
-  /// `region` is given). [Units: m] [Limit: 0 .. 100000]
+  /// The default region (ignored when `region` is given) is everything within this margin of a
+  /// building's bounding rectangle. [Units: m] [Limit: 0 .. 100000]
   double margin = 50.0;
   /// Sample spacing on the cells' top edges: every point of a top edge is within epsilon of a
   /// sample (thesis 5.3: samples at most 2ε apart; the occluders must be shrunk by the same ε,
@@ -41,9 +41,29 @@ struct ViewCellOptions {
   /// refined into thousands of cells as narrow as the sliver; their area is reported in
   /// ViewCellStats::sliver_area. 0 keeps every sliver. [Units: m] [Limit: 0 .. 1]
   double narrow_gap = 0.01;
+  /// Footprints closer than this fuse before meshing, as they fuse into blocks (the bake sets
+  /// it from BlockOptions::gap_tolerance): a gap a viewer cannot stand in gets no cells.
+  /// [Units: m] [Limit: 0 .. 10]
+  double gap = 0.05;
+  /// Clean-up tolerance of free space's boundary (thesis 5.3 meshes free space, not the
+  /// data's noise): the fused footprints grow by this much, then their rings are simplified
+  /// within it, so near-duplicate vertices, walls a few mm apart and wiggles smaller than it
+  /// vanish while every cell stays outside every building. The default keeps a viewer's eye
+  /// 0.275 m from any wall (gap/2 + snap), about half a body's width. [Units: m]
+  /// [Limit: 0 .. 10]
+  double snap = 0.25;
+  /// The mesher refines a cell for its shape only while its shortest edge is longer than this.
+  /// Delaunay refinement chases small input angles and close features into ever smaller
+  /// triangles (one real city grew past 17 GB); a badly shaped cell is still a valid cell.
+  /// The default leaves the cells of a generated city as they were and brings Delft's narrow
+  /// alleys from 2,503 to 1,990 cells (measured with urbanpvs-cells).
+  /// Cells smaller than max_cell_edge / 2 are always refined for shape (the floor used is
+  /// min(min_cell_edge, max_cell_edge / 2)). [Units: m] [Limit: 0 .. 10000]
+  double min_cell_edge = 4.0;
   /// The region to subdivide, in the city's local frame: the union of these polygons (simple
-  /// rings; orientation does not matter). Empty: the buildings' bounding rectangle grown by
-  /// `margin`. ViewCellMesh::options holds the region used, oriented like footprints.
+  /// rings; orientation does not matter). Empty: the union of the buildings' bounding
+  /// rectangles grown by `margin`. ViewCellMesh::options holds the region used, oriented like
+  /// footprints.
   std::vector<Polygon> region;
 };
 
@@ -63,8 +83,8 @@ struct ViewCell {
   std::array<Vec2, 3> corner;           ///< counter-clockwise
   std::array<std::uint32_t, 3> vertex;  ///< corner k is ViewCellMesh::vertices[vertex[k]]
   std::array<double, 3> ground;         ///< ground height (absolute) at corner k
-  double zmin = 0;                      ///< lowest ground corner + eye_min
-  double zmax = 0;                      ///< highest ground corner + eye_max
+  double zmin = 0;                      ///< lowest ground in the cell + eye_min
+  double zmax = 0;                      ///< highest ground in the cell + eye_max
   /// The cell across the edge opposite corner k (corners k+1, k+2), or -1 where that edge is a
   /// building wall or the region's boundary.
   std::array<std::int32_t, 3> neighbour;
@@ -116,13 +136,12 @@ struct ViewCellMesh {
 };
 
 /// The view cells of `city`: free space = the region minus every building footprint
-/// (CityObject::footprint; touching, overlapping and nested footprints merge exactly, leaving no
-/// sliver between them), less slivers thinner than `narrow_gap` along walls. Triangulated and
-/// refined so that
+/// (CityObject::footprint, grown by gap/2 + snap, fused exactly and simplified within snap:
+/// ViewCellOptions::gap, snap), less slivers thinner than `narrow_gap` along walls. Triangulated
+/// and refined so that
 ///  - no cell edge is longer than max_cell_edge;
-///  - no cell angle is below kMinCellAngleDeg, except near a corner of free space sharper than
-///    60° (two walls meeting at a small angle), where the cells keep at least half of that
-///    corner's angle (measured on generated cities, Delft and Helsinki: exactly that angle);
+///  - no cell angle is below kMinCellAngleDeg, except where the cell's shortest edge is below
+///    min_cell_edge (near sharp corners of free space and close features);
 ///  - no cell overlaps a footprint's interior, decided exactly: rounded points (midpoints of
 ///    slanted walls, crossings of footprints) are moved by a few ulps into free space.
 /// Deterministic. Throws std::invalid_argument for invalid options or when there is nothing to

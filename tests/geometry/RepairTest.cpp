@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Repair, don't refuse (issue 11): broken rings become the region they wind around, checked
+// against winding numbers computed independently at random points; buildings beyond repair or
+// without height stay objects that occlude nothing; --strict refuses instead.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "../../geometry/src/RingRepair.hpp"
+#include "urbanpvs/geometry/CityReader.hpp"
+#include "urbanpvs/geometry/InputError.hpp"
+#include "urbanpvs/geometry/RingCleanup.hpp"
+
+namespace urbanpvs::geometry {
+namespace {
+
+const std::filesystem::path kBad = std::filesystem::path(URBANPVS_TEST_DATA) / "bad";
+
+// The winding number of ring r around p (p on no edge), by summing signed angles.
+int winding(const Ring& r, Vec2 p) {
+  double turn = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Vec2 a = r[i] - p, b = r[(i + 1) % r.size()] - p;
+    turn += std::atan2(cross(a, b), dot(a, b));
+  }
+  return static_cast<int>(std::lround(turn / (2 * M_PI)));
+}
+
+double near_edge(const std::vector<Ring>& rings, Vec2 p) {
+  double d = INFINITY;
+  for (const Ring& r : rings)
+    for (std::size_t i = 0; i < r.size(); ++i)
+      d = std::min(d, distance_to_segment(p, r[i], r[(i + 1) % r.size()]));
+  return d;
+}
+
+bool in_pieces(const std::vector<Polygon>& pieces, Vec2 p) {
+  for (const Polygon& q : pieces)
+    if (inside(q, p)) return true;
+  return false;
+}
+
+double total_area(const std::vector<Polygon>& pieces) {
+  double a = 0;
+  for (const Polygon& p : pieces) a += area(p);
+  return a;
+}
+
+TEST(RingRepair, BowTieBecomesItsTwoTriangles) {
+  const std::vector<Polygon> pieces = detail::fill_by_winding({{{0, 0}, {4, 0}, {0, 2}, {4, 2}}});
+  ASSERT_EQ(pieces.size(), 2u);
+  // Two triangles of base 4 and height 1 meeting at (2, 1), where the union pulls them 1 µm
+  // apart.
+  EXPECT_NEAR(total_area(pieces), 4.0, 1e-4);
+  for (const Polygon& p : pieces) EXPECT_EQ(polygon_defect(p), "");
+}
+
+TEST(RingRepair, SpikeAndRepeatedPointsVanish) {
+  // A 10 x 10 square with a zero-width spike out of its top edge.
+  const Ring r{{0, 0}, {10, 0}, {10, 10}, {6, 10}, {6, 15}, {6, 10}, {0, 10}, {0, 0}};
+  const std::vector<Polygon> pieces = detail::fill_by_winding({r});
+  ASSERT_EQ(pieces.size(), 1u);
+  EXPECT_NEAR(area(pieces[0]), 100.0, 1e-9);
+  EXPECT_EQ(polygon_defect(pieces[0]), "");
+}
+
+TEST(RingRepair, HoleCrossingItsOuterRingIsCutOut) {
+  const Ring outer{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  const Ring hole{{5, 2}, {15, 2}, {15, 8}, {5, 8}};  // half outside
+  const std::vector<Polygon> pieces = detail::fill_by_winding({outer, hole});
+  EXPECT_NEAR(total_area(pieces), 100.0 - 30.0, 1e-9);
+  for (const Polygon& p : pieces) EXPECT_EQ(polygon_defect(p), "");
+}
+
+// Property: for random self-intersecting rings with random holes, a point lies in the repaired
+// pieces exactly when the outer ring winds around it and no hole does.
+TEST(RingRepair, AgreesWithWindingNumbersOnRandomRings) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 100);
+  std::size_t points = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<Ring> rings(1 + trial % 3);
+    for (std::size_t k = 0; k < rings.size(); ++k) {
+      const int n = 4 + trial % 9;
+      for (int i = 0; i < n; ++i) rings[k].push_back({u(rng), u(rng)});
+    }
+    const std::vector<Polygon> pieces = detail::fill_by_winding(rings);
+    for (const Polygon& p : pieces) ASSERT_EQ(polygon_defect(p), "") << "trial " << trial;
+    for (int i = 0; i < 200; ++i) {
+      const Vec2 p{u(rng), u(rng)};
+      if (near_edge(rings, p) < 1e-6) continue;
+      // The holes count together, each turned to run counter-clockwise by its signed area.
+      int holes = 0;
+      for (std::size_t k = 1; k < rings.size(); ++k)
+        holes += (signed_area2(rings[k]) >= 0 ? 1 : -1) * winding(rings[k], p);
+      const bool expect = winding(rings[0], p) != 0 && holes == 0;
+      ASSERT_EQ(in_pieces(pieces, p), expect) << "trial " << trial << " at " << p.x << "," << p.y;
+      ++points;
+    }
+  }
+  EXPECT_GT(points, 30000u);
+}
+
+TEST(CleanPolygon, RepairsAreReportedAndStrictRefusesThem) {
+  ReadReport report;
+  const Ring bowtie{{0, 0}, {4, 0}, {0, 2}, {4, 2}};
+  const std::vector<Polygon> pieces = clean_polygon({bowtie}, {"f.json", "b7", true}, report);
+  EXPECT_EQ(pieces.size(), 2u);
+  ASSERT_EQ(report.repairs.size(), 1u);
+  EXPECT_NE(
+      report.repairs[0].find("f.json: b7: outer ring: ring has zero area (ring intersects itself"),
+      std::string::npos)
+      << report.repairs[0];
+  EXPECT_NE(report.repairs[0].find("2 simple pieces, 4.00 m2"), std::string::npos)
+      << report.repairs[0];
+  try {
+    clean_polygon({bowtie}, {"f.json", "b7", true, /*strict=*/true}, report);
+    FAIL() << "strict accepted a bow-tie";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::InvalidGeometry);
+    EXPECT_EQ(e.feature(), "b7");
+  }
+  // A valid ring is left as it is and reports nothing.
+  ReadReport quiet;
+  EXPECT_EQ(clean_polygon({{{0, 0}, {1, 0}, {1, 1}}}, {"f.json", "ok", true}, quiet).size(), 1u);
+  EXPECT_TRUE(quiet.repairs.empty());
+}
+
+const CityObject& object(const City& c, const std::string& id) {
+  for (const CityObject& o : c.objects)
+    if (o.source_id == id) return o;
+  throw std::runtime_error("no object " + id);
+}
+
+TEST(RepairReading, BowTieBuildingIsRepairedAndStillOccludes) {
+  const City c = read_city({(kBad / "geojson_bowtie.geojson").string()});
+  const CityObject& o = object(c, "way/1001");
+  EXPECT_TRUE(o.occludes);
+  EXPECT_EQ(o.footprint.size(), 2u);
+  EXPECT_EQ(o.occluders.size(), 2u);
+  ASSERT_EQ(c.report.repairs.size(), 1u);
+  EXPECT_NE(c.report.repairs[0].find("way/1001"), std::string::npos);
+}
+
+TEST(RepairReading, ZeroAreaBuildingIsAnObjectThatOccludesNothing) {
+  const City c = read_city({(kBad / "geojson_zero_area.geojson").string()});
+  ASSERT_EQ(c.objects.size(), 1u);
+  const CityObject& o = object(c, "way/1002");
+  EXPECT_FALSE(o.occludes);
+  EXPECT_TRUE(o.occluders.empty());
+  EXPECT_GT(o.bbox.xy.area(), 0);  // its coordinates' box: tested for visibility there
+  ASSERT_EQ(c.report.non_occluding.size(), 1u);
+  EXPECT_NE(c.report.non_occluding[0].find("way/1002"), std::string::npos);
+}
+
+TEST(RepairReading, BuildingWithoutHeightIsTestedAsTallAsItMayBe) {
+  ReadOptions options;
+  options.max_height = 300;
+  const City c = read_city({(kBad / "geojson_missing_height.geojson").string()}, options);
+  ASSERT_EQ(c.objects.size(), 2u);
+  const CityObject& o = object(c, "relation/777");
+  EXPECT_FALSE(o.occludes);
+  EXPECT_TRUE(o.occluders.empty());
+  EXPECT_EQ(o.bbox.zmax, 300);
+  EXPECT_EQ(o.footprint.size(), 1u);  // its own outline still keeps cells out
+  EXPECT_TRUE(object(c, "way/4253124").occludes);
+  options.strict = true;
+  try {
+    read_city({(kBad / "geojson_missing_height.geojson").string()}, options);
+    FAIL() << "strict accepted a building without height";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::MissingHeight);
+  }
+}
+
+TEST(RepairReading, RealTileWithOneBrokenRingReadsWithTheDefaults) {
+  const std::filesystem::path path =
+      std::filesystem::path(URBANPVS_SHARED_CITIES) / "tudelft_3dbag_tile5910.city.json";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
+  const City c = read_city({path.string()});
+  EXPECT_EQ(c.objects.size(), 432u);
+  ASSERT_EQ(c.report.repairs.size(), 1u);
+  EXPECT_NE(c.report.repairs[0].find("NL.IMBAG.Pand.0503100000032914-0"), std::string::npos);
+  // The three buildings that have only LoD0 footprints (SOURCES.md).
+  EXPECT_EQ(c.report.non_occluding.size(), 3u);
+  ReadOptions strict;
+  strict.strict = true;
+  EXPECT_THROW(read_city({path.string()}, strict), InputError);
+}
+
+}  // namespace
+}  // namespace urbanpvs::geometry
