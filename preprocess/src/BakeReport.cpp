@@ -50,6 +50,8 @@ std::string report_json(const BakeReport& r) {
                  {"pvs_max", r.pvs_max},
                  {"fraction_culled", r.fraction_culled()},
                  {"bytes_per_cell", r.cells > 0 ? double(r.output_bytes) / double(r.cells) : 0.0}};
+  j["repairs"] = r.repairs;
+  j["non_occluding"] = r.non_occluding;
   j["seconds"] = {{"read", r.seconds.read},
                   {"scene", r.seconds.scene},
                   {"visibility", r.seconds.visibility},
@@ -79,6 +81,11 @@ std::string summary_text(const BakeReport& r) {
                     r.cells_from_journal));
   add(std::snprintf(line, sizeof line, "objects:     %zu (%zu blocks, %zu occluders)\n", r.objects,
                     r.blocks, r.occluders));
+  add(std::snprintf(line, sizeof line,
+                    "input:       %zu geometric repairs, %zu objects that occlude nothing\n",
+                    r.repairs.size(), r.non_occluding.size()));
+  for (const std::string& text : r.repairs) out += "  repaired:    " + text + "\n";
+  for (const std::string& text : r.non_occluding) out += "  no occluder: " + text + "\n";
   add(std::snprintf(
       line, sizeof line, "PVS:         mean %.1f, max %llu objects; %.1f %% culled on average\n",
       r.mean_pvs(), static_cast<unsigned long long>(r.pvs_max), 100.0 * r.fraction_culled()));

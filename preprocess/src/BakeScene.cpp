@@ -62,6 +62,8 @@ std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptio
       {"eye_max_m", exact(o.cells.eye_max)},
       {"margin_m", exact(o.cells.margin)},
       {"narrow_gap_m", exact(o.cells.narrow_gap)},
+      {"snap_m", exact(o.cells.snap)},
+      {"min_cell_edge_m", exact(o.cells.min_cell_edge)},
       {"gap_tolerance_m", exact(o.blocks.gap_tolerance)},
       {"height_step_m", exact(o.blocks.height_step)},
       {"backend", o.backend == Backend::Cpu ? "cpu" : "osmesa"},
@@ -89,6 +91,8 @@ void BakeOptions::validate() const {
 
 BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
     : city_(&city), options_(options) {
+  // Walls closer than the block gap are one wall for the cells too: one setting, both stages.
+  options_.cells.gap = options_.blocks.gap_tolerance;
   options_.validate();
   blocks_ = geometry::build_blocks(city.objects, options_.blocks);
   const double shrink =

@@ -238,6 +238,8 @@ int Run::execute() {
   read_inputs();
   report_.seconds.read = seconds_since(start);
   report_.objects = city_.objects.size();
+  report_.repairs = city_.report.repairs;
+  report_.non_occluding = city_.report.non_occluding;
   note("read %zu objects from %zu files (%.2f s)", city_.objects.size(), request_.inputs.size(),
        report_.seconds.read);
 
@@ -293,7 +295,8 @@ std::vector<std::pair<std::string, std::string>> result_settings(const Preproces
           {"default_height_m", r.read.default_height ? exact(*r.read.default_height) : "none"},
           {"level_height_m", exact(r.read.level_height)},
           {"coordinates", coordinates[static_cast<int>(r.read.coordinates)]},
-          {"skip_invalid", r.read.skip_invalid ? "true" : "false"},
+          {"strict", r.read.strict ? "true" : "false"},
+          {"max_height_m", exact(r.read.max_height)},
       });
   return out;
 }

@@ -116,7 +116,9 @@ void apply_config(const std::string& path, CLI::App& app, PreprocessRequest& r, 
         {"default-height", [&] { t.default_height = number(), t.default_height_given = true; }},
         {"level-height", [&] { r.read.level_height = number(); }},
         {"coordinates", [&] { t.coordinates = text_value(); }},
-        {"skip-invalid", [&] { r.read.skip_invalid = flag(); }},
+        {"strict", [&] { r.read.strict = flag(); }},
+        {"skip-invalid", [&] { (void)flag(); }},
+        {"max-height", [&] { r.read.max_height = number(); }},
         {"gap", [&] { r.bake.blocks.gap_tolerance = number(); }},
         {"threads",
          [&] {
@@ -225,7 +227,7 @@ std::optional<int> parse_preprocess_command_line(int argc, const char* const* ar
       ->check(CLI::ExistingFile);
   app.add_option("--default-height", t.default_height,
                  "Height in m of GeoJSON buildings without height attributes [default: none; "
-                 "such buildings are an input error]")
+                 "such buildings are objects that occlude nothing, tested up to --max-height]")
       ->type_name("M");
   app.add_option("--level-height", r.read.level_height,
                  "Height in m of one storey, for building:levels")
@@ -235,8 +237,19 @@ std::optional<int> parse_preprocess_command_line(int argc, const char* const* ar
                  "GeoJSON coordinates: auto, geographic or projected")
       ->type_name("auto|geographic|projected")
       ->capture_default_str();
-  app.add_flag("--skip-invalid", r.read.skip_invalid,
-               "Drop buildings with invalid geometry instead of failing");
+  app.add_flag("--strict", r.read.strict,
+               "Refuse geometry that needs repair (exit 14) instead of repairing it or keeping "
+               "the building as an object that occludes nothing");
+  app.add_flag("--skip-invalid")
+      ->description(
+          "Accepted for old scripts; the default now keeps every building (repaired, or "
+          "as an object that occludes nothing)");
+  app.add_option("--max-height", r.read.max_height,
+                 "Tallest plausible building in m: taller input is refused; buildings of "
+                 "unknown height are tested up to it")
+      ->type_name("M")
+      ->check(CLI::Range(1.0, 100000.0))
+      ->capture_default_str();
   app.add_option("--gap", r.bake.blocks.gap_tolerance,
                  "Footprints closer than this many m fuse into one block")
       ->type_name("M")

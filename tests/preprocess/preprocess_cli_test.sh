@@ -12,6 +12,8 @@
 #   failures  unwritable output/report, bad input, bad options: documented exit code, no output
 #   config    --config settings apply, the command line wins
 #   help      --help lists every option
+#   repairs   a broken ring is repaired and a building without height kept as an object that
+#             occludes nothing: listed in the summary and the report, present in the file
 # Usage: preprocess_cli_test.sh CASE WORK_DIR PREPROCESS CITYGEN VALIDATE INSPECT BAD_INPUT_DIR
 set -euo pipefail
 case_name=$1 work=$2 preprocess=$3 citygen=$4 validate=$5 inspect=$6 bad=$7
@@ -197,7 +199,14 @@ failures)
   expect 11 "invalid JSON input" -- "$preprocess" "$bad/truncated.city.json" -o bad.pvs --quiet
   grep -q truncated.city.json stderr.txt || fail "the message does not name the input"
   absent bad.pvs bad.pvs.journal
-  expect 15 "missing height" -- "$preprocess" "$bad/geojson_missing_height.geojson" -o bad.pvs
+  expect 15 "missing height with --strict" -- "$preprocess" "$bad/geojson_missing_height.geojson" \
+    -o bad.pvs --strict
+  grep -q 'relation/777' stderr.txt || fail "the message does not name the building"
+  absent bad.pvs bad.pvs.journal
+  expect 14 "bow-tie with --strict" -- "$preprocess" "$bad/geojson_bowtie.geojson" -o bad.pvs \
+    --strict
+  grep -q 'way/1001: invalid geometry: outer ring: ring has zero area (ring intersects itself' \
+    stderr.txt || fail "the message does not name the building and the problem"
   absent bad.pvs bad.pvs.journal
   expect 2 "missing input file" -- "$preprocess" no_such_city.json -o bad.pvs
   expect 2 "no output given" -- "$preprocess" city.city.json
@@ -227,10 +236,40 @@ JSON
   grep -q '"epsilon_m": 3,' conf/config-report.json || fail "epsilon of the command line not used"
   ;;
 
+repairs)
+  # Repair, don't refuse: a bow-tie building is repaired, one without height is kept as an object
+  # that occludes nothing; both are in the file, the summary and the report.
+  cat > broken.geojson <<'JSON'
+{"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:3067"}},
+ "features": [
+  {"type": "Feature", "id": "bowtie", "properties": {"building": "yes", "height": 12},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [30, 0], [0, 20], [30, 20], [0, 0]]]}},
+  {"type": "Feature", "id": "no-height", "properties": {"building": "yes"},
+   "geometry": {"type": "Polygon", "coordinates": [[[60, 0], [70, 0], [70, 10], [60, 10], [60, 0]]]}},
+  {"type": "Feature", "id": "house", "properties": {"building": "yes", "height": 9},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 60], [20, 60], [20, 75], [0, 75], [0, 60]]]}}
+ ]}
+JSON
+  "$preprocess" broken.geojson -o broken.pvs --max-cell-edge 20 --epsilon 2 --report broken.json \
+    2> stderr.txt || fail "the bake failed: $(cat stderr.txt)"
+  grep -q 'input:       1 geometric repairs, 1 objects that occlude nothing' stderr.txt ||
+    fail "the summary does not count the repair and the non-occluding object: $(cat stderr.txt)"
+  grep -q 'repaired:    broken.geojson: bowtie: outer ring' stderr.txt || fail "repair not listed"
+  grep -q 'no occluder: broken.geojson: no-height: no height' stderr.txt ||
+    fail "non-occluding object not listed"
+  grep -q '"repairs": \[' broken.json || fail "report lacks repairs"
+  grep -q 'no-height: no height' broken.json || fail "report lacks the non-occluding object"
+  "$inspect" broken.pvs > summary.txt
+  grep -q 'objects:     3' summary.txt || fail "an object is missing from the file: $(cat summary.txt)"
+  "$validate" broken.geojson broken.pvs --viewpoints 300 --tightness-viewpoints 20 ||
+    fail "urbanpvs-validate found misses (or failed)"
+  ;;
+
 help)
   "$preprocess" --help > help.txt
   for option in --output --epsilon --pixel --max-cell-edge --eye-band --region --default-height \
-                --threads --backend --method --report --resume --quiet --config; do
+                --threads --backend --method --report --resume --quiet --config --strict \
+                --max-height; do
     grep -q -- "$option" help.txt || fail "--help does not list $option"
   done
   ;;

@@ -37,6 +37,8 @@ struct BakeReport {
   std::vector<std::pair<std::string, std::string>> settings;
   unsigned threads = 1;
   std::size_t objects = 0, blocks = 0, occluders = 0, cells = 0;
+  /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding).
+  std::vector<std::string> repairs, non_occluding;
   std::size_t cells_computed = 0;      ///< by this run
   std::size_t cells_from_journal = 0;  ///< taken from a resumed journal
   std::uint64_t pvs_entries = 0;       ///< sum of PVS sizes over all cells
