@@ -39,11 +39,13 @@ const Scene& scene() {
     double best_d = 1e300;
     for (std::size_t i = 0; i < mesh.cells.size(); ++i) {
       const auto& t = mesh.cells[i].corner;
-      const double d = std::hypot((t[0].x + t[1].x + t[2].x) / 3 - c.x, (t[0].y + t[1].y + t[2].y) / 3 - c.y);
+      const double d =
+          std::hypot((t[0].x + t[1].x + t[2].x) / 3 - c.x, (t[0].y + t[1].y + t[2].y) / 3 - c.y);
       if (d < best_d) best = i, best_d = d;
     }
     for (std::uint32_t e : mesh.cells[best].edge)
-      for (const geometry::Point3& q : mesh.samples_of(mesh.edges[e])) out.samples.push_back({q.x, q.y, q.z});
+      for (const geometry::Point3& q : mesh.samples_of(mesh.edges[e]))
+        out.samples.push_back({q.x, q.y, q.z});
     out.grid = preprocess::CullMapGrid::covering(b.grown(10), 1.39);
     return out;
   }();
@@ -56,8 +58,9 @@ void report(benchmark::State& state, const preprocess::CullMapStats& st, std::si
   state.counters["shadows/cell"] = double(st.shadows) / double(cells);
   state.counters["pixels/cell"] = double(st.pixels_written) / double(cells);
   state.counters["map_px"] = double(s.grid.width) * s.grid.height;
-  state.counters["ms/sample"] = benchmark::Counter(double(cells * s.samples.size()) / 1000.0,
-                                                   benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ms/sample"] =
+      benchmark::Counter(double(cells * s.samples.size()) / 1000.0,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void BM_CpuCellCullMap(benchmark::State& state) {
@@ -78,7 +81,8 @@ void BM_OsMesaCellCullMap(benchmark::State& state) {
   std::size_t cells = 0;
   const geometry::Box3 b = s.city.bounds();
   for (auto _ : state) {
-    benchmark::DoNotOptimize(gl.cell_cull_map(s.grid, s.samples, s.occluders, b.zmin - 1, b.zmax + 1000, &st));
+    benchmark::DoNotOptimize(
+        gl.cell_cull_map(s.grid, s.samples, s.occluders, b.zmin - 1, b.zmax + 1000, &st));
     ++cells;
   }
   report(state, st, cells);

@@ -28,13 +28,13 @@ struct FreeSpaceTriangulation {
 
 /// Triangulates (union of `region`) minus (union of `obstacles`) and refines it with CGAL's
 /// Delaunay mesher: no edge longer than `max_edge`, shape bound `shape_bound` (= sin² of the
-/// smallest angle the mesher aims at) for triangles whose shortest edge exceeds `min_edge`. Faces of the unrefined triangulation thinner than
-/// `narrow_gap` along a wall are left out (0: none). Polygons must have simple rings, in any
-/// orientation; they may overlap, touch and cross each other. Every returned vertex lies in the
-/// closed free space.
+/// smallest angle the mesher aims at) for triangles whose shortest edge exceeds `min_edge`. Faces
+/// of the unrefined triangulation thinner than `narrow_gap` along a wall are left out (0: none).
+/// Polygons must have simple rings, in any orientation; they may overlap, touch and cross each
+/// other. Every returned vertex lies in the closed free space.
 FreeSpaceTriangulation triangulate_free_space(const std::vector<Polygon>& region,
                                               const std::vector<const Polygon*>& obstacles,
-                                              double max_edge, double shape_bound,
-                                              double min_edge, double narrow_gap);
+                                              double max_edge, double shape_bound, double min_edge,
+                                              double narrow_gap);
 
 }  // namespace urbanpvs::geometry::detail

@@ -5,15 +5,24 @@ namespace urbanpvs::geometry {
 
 const char* to_string(InputProblem p) {
   switch (p) {
-    case InputProblem::Unreadable: return "unreadable file";
-    case InputProblem::InvalidJson: return "invalid JSON";
-    case InputProblem::BadStructure: return "unexpected structure";
-    case InputProblem::UnknownCrs: return "unknown coordinate reference system";
-    case InputProblem::InvalidGeometry: return "invalid geometry";
-    case InputProblem::MissingHeight: return "missing height";
-    case InputProblem::EmptyCity: return "empty city";
-    case InputProblem::UnsupportedFormat: return "unsupported format";
-    case InputProblem::Implausible: return "implausible input";
+    case InputProblem::Unreadable:
+      return "unreadable file";
+    case InputProblem::InvalidJson:
+      return "invalid JSON";
+    case InputProblem::BadStructure:
+      return "unexpected structure";
+    case InputProblem::UnknownCrs:
+      return "unknown coordinate reference system";
+    case InputProblem::InvalidGeometry:
+      return "invalid geometry";
+    case InputProblem::MissingHeight:
+      return "missing height";
+    case InputProblem::EmptyCity:
+      return "empty city";
+    case InputProblem::UnsupportedFormat:
+      return "unsupported format";
+    case InputProblem::Implausible:
+      return "implausible input";
   }
   return "input error";
 }

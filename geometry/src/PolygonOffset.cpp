@@ -74,7 +74,8 @@ std::vector<Polygon> shrink_polygon(const Polygon& poly, double d) {
 
 std::vector<Polygon> grow_polygon(const Polygon& poly, double d) {
   if (!(d > 0)) return {poly};
-  return from_cgal(CGAL::create_exterior_skeleton_and_offset_polygons_with_holes_2(d, to_cgal(poly)));
+  return from_cgal(
+      CGAL::create_exterior_skeleton_and_offset_polygons_with_holes_2(d, to_cgal(poly)));
 }
 
 }  // namespace urbanpvs::geometry

@@ -33,15 +33,15 @@ void SvgMap::polygon(const Polygon& p, const std::string& style) {
 }
 
 void SvgMap::triangle(Vec2 a, Vec2 b, Vec2 c, const std::string& style) {
-  body_ << "<path style=\"" << style << "\" d=\"M" << point(a) << "L" << point(b) << "L"
-        << point(c) << "Z\"/>\n";
+  body_ << "<path style=\"" << style << "\" d=\"M" << point(a) << "L" << point(b) << "L" << point(c)
+        << "Z\"/>\n";
 }
 
 void SvgMap::text(Vec2 at, const std::string& s, const std::string& style) {
   const std::string xy = point(at);
   const auto comma = xy.find(',');
-  body_ << "<text x=\"" << xy.substr(0, comma) << "\" y=\"" << xy.substr(comma + 1)
-        << "\" style=\"" << style << "\">" << s << "</text>\n";
+  body_ << "<text x=\"" << xy.substr(0, comma) << "\" y=\"" << xy.substr(comma + 1) << "\" style=\""
+        << style << "\">" << s << "</text>\n";
 }
 
 std::string SvgMap::str() const {

@@ -21,7 +21,9 @@ struct Rect {
   double x0, y0, x1, y1, top;
 };
 
-Polygon polygon_of(const Rect& r) { return {{{r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}}, {}}; }
+Polygon polygon_of(const Rect& r) {
+  return {{{r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}}, {}};
+}
 
 std::vector<CityObject> objects_of(const std::vector<Rect>& rects) {
   std::vector<CityObject> objects;
@@ -152,8 +154,8 @@ TEST(Blocks, RandomClustersOccludersKeepEpsilonInsideBuildings) {
           for (int k = 0; k < 16; ++k) {
             const double ang = k * 2 * 3.14159265358979 / 16;
             const Vec2 q{p.x + (eps - 1e-6) * std::cos(ang), p.y + (eps - 1e-6) * std::sin(ang)};
-            ASSERT_TRUE(covered(q)) << "cluster " << c << " occluder point (" << p.x << ", "
-                                    << p.y << ") is within eps of open ground";
+            ASSERT_TRUE(covered(q)) << "cluster " << c << " occluder point (" << p.x << ", " << p.y
+                                    << ") is within eps of open ground";
           }
         }
       });
@@ -183,14 +185,18 @@ void check_city_blocks(const std::string& path, const ReadOptions& read) {
   };
   std::vector<Foot> feet;
   for (const CityObject& o : city.objects)
-    for (const OccluderPrism& p : o.occluders) feet.push_back({&p.footprint, bounds(p.footprint), p.top_z});
+    for (const OccluderPrism& p : o.occluders)
+      feet.push_back({&p.footprint, bounds(p.footprint), p.top_z});
   auto covered = [&](Vec2 q, double top) {
     for (const Foot& f : feet) {
-      if (f.top + options.height_step < top || !f.box.grown(options.gap_tolerance).overlaps(Box2{q, q}))
+      if (f.top + options.height_step < top ||
+          !f.box.grown(options.gap_tolerance).overlaps(Box2{q, q}))
         continue;
       if (inside(*f.poly, q)) return true;
       bool near = false;
-      for_each_edge(*f.poly, [&](Vec2 a, Vec2 b) { near |= distance_to_segment(q, a, b) <= options.gap_tolerance; });
+      for_each_edge(*f.poly, [&](Vec2 a, Vec2 b) {
+        near |= distance_to_segment(q, a, b) <= options.gap_tolerance;
+      });
       if (near) return true;
     }
     return false;
@@ -205,8 +211,9 @@ void check_city_blocks(const std::string& path, const ReadOptions& read) {
           const double ang = k * 3.14159265358979 / 4;
           const Vec2 q{p.x + (eps - 1e-6) * std::cos(ang), p.y + (eps - 1e-6) * std::sin(ang)};
           ++samples;
-          ASSERT_TRUE(covered(q, o.top_z)) << path << ": occluder point (" << p.x << ", " << p.y
-                                           << ") at " << o.top_z << " m is within eps of open ground";
+          ASSERT_TRUE(covered(q, o.top_z))
+              << path << ": occluder point (" << p.x << ", " << p.y << ") at " << o.top_z
+              << " m is within eps of open ground";
         }
       }
     });
@@ -216,7 +223,9 @@ void check_city_blocks(const std::string& path, const ReadOptions& read) {
 TEST(Blocks, BundledSampleCity) {
   check_city_blocks(std::string(URBANPVS_SOURCE_DIR) + "/cities/sample/district.city.json", {});
 }
-TEST(Blocks, DelftCity) { check_city_blocks(std::string(URBANPVS_SHARED_CITIES) + "/delft.city.json", {}); }
+TEST(Blocks, DelftCity) {
+  check_city_blocks(std::string(URBANPVS_SHARED_CITIES) + "/delft.city.json", {});
+}
 TEST(Blocks, HelsinkiCity) {
   ReadOptions read;
   read.default_height = 12;

@@ -22,10 +22,11 @@ inline Ring star_ring(std::mt19937_64& rng, Vec2 c, double rmin, double rmax, in
     angles.assign(static_cast<std::size_t>(std::max(n, 3)), 0.0);
     for (double& a : angles) a = u(rng) * 2 * std::numbers::pi;
     std::sort(angles.begin(), angles.end());
-    angles.erase(std::unique(angles.begin(), angles.end(),
-                             [](double a, double b) { return b - a < 1e-3; }),
-                 angles.end());
-    ok = angles.size() >= 3 && angles.front() + 2 * std::numbers::pi - angles.back() < 0.9 * std::numbers::pi;
+    angles.erase(
+        std::unique(angles.begin(), angles.end(), [](double a, double b) { return b - a < 1e-3; }),
+        angles.end());
+    ok = angles.size() >= 3 &&
+         angles.front() + 2 * std::numbers::pi - angles.back() < 0.9 * std::numbers::pi;
     for (std::size_t i = 1; ok && i < angles.size(); ++i)
       ok = angles[i] - angles[i - 1] < 0.9 * std::numbers::pi;
   }
@@ -55,7 +56,8 @@ inline Polygon random_star_polygon(std::mt19937_64& rng) {
     for (Vec2 v : p.outer) c = c + (1.0 / double(p.outer.size())) * v;
     double inner = 1e300;
     for (std::size_t i = 0; i < p.outer.size(); ++i)
-      inner = std::min(inner, distance_to_segment(c, p.outer[i], p.outer[(i + 1) % p.outer.size()]));
+      inner =
+          std::min(inner, distance_to_segment(c, p.outer[i], p.outer[(i + 1) % p.outer.size()]));
     if (inside_ring(p.outer, c) && inner > 2) {
       Ring hole = star_ring(rng, c, 0.2 * inner, 0.6 * inner, 3 + int(8 * u(rng)));
       if (hole.size() >= 3) {

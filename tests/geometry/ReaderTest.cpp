@@ -622,8 +622,7 @@ PartFacts part_facts(const Json& doc, const std::string& id) {
       f.zmin = std::min(f.zmin, z);
       f.zmax = std::max(f.zmax, z);
     });
-    if (values[s].is_number() &&
-        surfaces[values[s].get<std::size_t>()]["type"] == "GroundSurface")
+    if (values[s].is_number() && surfaces[values[s].get<std::size_t>()]["type"] == "GroundSurface")
       f.ground = true;
     if (!values[s].is_number() || surfaces[values[s].get<std::size_t>()]["type"] != "RoofSurface")
       continue;

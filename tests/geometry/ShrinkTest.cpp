@@ -30,7 +30,8 @@ double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 double boundary_distance(const Polygon& shrunk, const Polygon& original) {
   double best = std::numeric_limits<double>::infinity();
   for_each_edge(shrunk, [&](Vec2 a, Vec2 b) {
-    for_each_edge(original, [&](Vec2 c, Vec2 d) { best = std::min(best, segment_distance(a, b, c, d)); });
+    for_each_edge(original,
+                  [&](Vec2 c, Vec2 d) { best = std::min(best, segment_distance(a, b, c, d)); });
   });
   return best;
 }
@@ -100,8 +101,18 @@ TEST(Shrink, ConvexAreaMatchesClosedForm) {
 
 TEST(Shrink, NarrowPartsVanishAndSplit) {
   // A dumbbell: two 20 m squares joined by a 2 m wide corridor; ε = 1.5 cuts the corridor.
-  const Polygon dumbbell{{{0, 0}, {20, 0}, {20, 9}, {40, 9}, {40, 0}, {60, 0}, {60, 20}, {40, 20},
-                          {40, 11}, {20, 11}, {20, 20}, {0, 20}},
+  const Polygon dumbbell{{{0, 0},
+                          {20, 0},
+                          {20, 9},
+                          {40, 9},
+                          {40, 0},
+                          {60, 0},
+                          {60, 20},
+                          {40, 20},
+                          {40, 11},
+                          {20, 11},
+                          {20, 20},
+                          {0, 20}},
                          {}};
   EXPECT_EQ(check_shrink(dumbbell, 1.5, "dumbbell").size(), 2u);
   EXPECT_EQ(check_shrink(dumbbell, 0.5, "dumbbell").size(), 1u);
@@ -109,7 +120,8 @@ TEST(Shrink, NarrowPartsVanishAndSplit) {
 }
 
 TEST(Shrink, CourtyardHoleGrows) {
-  const Polygon block{{{0, 0}, {50, 0}, {50, 50}, {0, 50}}, {{{15, 15}, {15, 35}, {35, 35}, {35, 15}}}};
+  const Polygon block{{{0, 0}, {50, 0}, {50, 50}, {0, 50}},
+                      {{{15, 15}, {15, 35}, {35, 35}, {35, 15}}}};
   const auto r = check_shrink(block, 1.0, "courtyard");
   ASSERT_EQ(r.size(), 1u);
   ASSERT_EQ(r[0].holes.size(), 1u);
@@ -130,8 +142,12 @@ void check_real_city(const std::string& file, const ReadOptions& options) {
   EXPECT_GT(checked, 100u);
 }
 
-TEST(Shrink, EveryDelftFootprint) { check_real_city("delft.city.json", {}); }
-TEST(Shrink, EveryZurichFootprint) { check_real_city("zurich_subset_lod2.city.json", {}); }
+TEST(Shrink, EveryDelftFootprint) {
+  check_real_city("delft.city.json", {});
+}
+TEST(Shrink, EveryZurichFootprint) {
+  check_real_city("zurich_subset_lod2.city.json", {});
+}
 TEST(Shrink, EveryHelsinkiFootprint) {
   ReadOptions o;
   o.default_height = 12;

@@ -42,6 +42,7 @@ struct Block {
 
 /// Groups the occluder prisms of all objects into blocks and builds their levels. Deterministic:
 /// blocks are ordered by their smallest object index.
-std::vector<Block> build_blocks(const std::vector<CityObject>& objects, const BlockOptions& options);
+std::vector<Block> build_blocks(const std::vector<CityObject>& objects,
+                                const BlockOptions& options);
 
 }  // namespace urbanpvs::geometry
