@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config clang clang-format
+  # clang's runtime for libFuzzer and its sanitizers (the fuzz pass of scripts/test.sh)
+  libclang-rt-14-dev
   # geometry: triangulation, straight skeleton, Boolean operations (GPL parts of CGAL)
   libcgal-dev libgmp-dev libmpfr-dev
   # coordinates: WGS84 lon/lat -> local metric frame

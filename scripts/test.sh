@@ -7,6 +7,9 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 
 jobs=$(nproc)
+echo "== Formatting (clang-format --dry-run --Werror, the checked-in .clang-format)"
+git ls-files '*.cpp' '*.hpp' '*.h' '*.c' | xargs clang-format --dry-run --Werror
+
 echo "== Release build (warnings are errors)"
 cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DURBANPVS_WERROR=ON
 cmake --build build/release -j"$jobs"
@@ -23,4 +26,15 @@ if [ "${URBANPVS_SKIP_SANITIZERS:-0}" != 1 ]; then
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" \
     ctest --test-dir build/asan --output-on-failure -j"$jobs" --timeout 1800 -LE slow
+fi
+
+if [ "${URBANPVS_SKIP_FUZZ:-0}" != 1 ]; then
+  # libFuzzer needs clang: the runtime alone (no heavy dependencies) is built with it, and the
+  # .pvs loader is fuzzed for a bounded time (ctest's runtime.fuzz_loader, 20 s; the seed
+  # corpus is tests/runtime/fuzz/corpus). runtime/README.md says how to fuzz for longer.
+  echo "== libFuzzer (clang): the .pvs loader"
+  CC=clang CXX=clang++ cmake -S . -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DURBANPVS_RUNTIME_ONLY=ON -DURBANPVS_WERROR=ON -DURBANPVS_BUILD_BENCHMARKS=OFF
+  cmake --build build/fuzz -j"$jobs" --target urbanpvs_fuzz_loader
+  ctest --test-dir build/fuzz --output-on-failure -R 'fuzz_loader' --timeout 300 -V
 fi
