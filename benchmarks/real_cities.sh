@@ -36,7 +36,7 @@ for city in "$cities"/*.city.json "$cities"/*.geojson; do
   set +e
   "$validate" "$city" "$work/city.pvs" --viewpoints "$viewpoints" > "$work/validate.txt" 2>&1
   set -e
-  misses=$(sed -n 's/^misses: *\([0-9]*\).*/\1/p' "$work/validate.txt" | head -n 1)
+  misses=$(sed -n 's/.*misses: *\([0-9]*\).*/\1/p' "$work/validate.txt" | head -n 1)
   tight=$(sed -n 's/^tightness: *\([0-9.]*\).*/\1/p' "$work/validate.txt" | head -n 1)
   density=$(python3 -c "print('%.0f' % ($ncells / ($free / 1e6)))")
   mib=$(python3 -c "print('%.0f' % ($mesh_kb / 1024))")

@@ -249,7 +249,8 @@ std::optional<double> feature_height(Feature& f, const ReadOptions& options, Rea
 }
 
 // The input's own surfaces of a footprint prism from `base` to `top`: walls, top and bottom.
-void add_prism_surfaces(const Polygon& p, double base, double top, std::vector<Surface3>& out) {
+void add_prism_surfaces(const Polygon& p, double base, double top, bool blocks, bool bottom,
+                        std::vector<Surface3>& out) {
   auto ring3 = [](const Ring& r, double z) {
     std::vector<std::array<double, 3>> v;
     for (Vec2 q : r) v.push_back({q.x, q.y, z});
@@ -262,10 +263,12 @@ void add_prism_surfaces(const Polygon& p, double base, double top, std::vector<S
     top_face.rings.push_back(ring3(h, top));
     bottom_face.rings.push_back(ring3(h, base));
   }
+  top_face.blocks = bottom_face.blocks = blocks;
   out.push_back(std::move(top_face));
-  out.push_back(std::move(bottom_face));
+  if (bottom) out.push_back(std::move(bottom_face));
   for_each_edge(p, [&](Vec2 a, Vec2 b) {
-    out.push_back({{{{a.x, a.y, base}, {b.x, b.y, base}, {b.x, b.y, top}, {a.x, a.y, top}}}});
+    out.push_back(
+        {{{{a.x, a.y, base}, {b.x, b.y, base}, {b.x, b.y, top}, {a.x, a.y, top}}}, blocks});
   });
 }
 
@@ -322,7 +325,14 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
            ": no height, building:height, measuredHeight or building:levels (and no "
            "--default-height)";
   if (!f.lost.empty()) return file + ": " + f.id + ": " + f.lost;
-  for (const Polygon& p : f.polygons) add_prism_surfaces(p, f.min_height, h, o.surfaces);
+  // A roof cut to its eaves: the walls stand up to the eaves for sure; the roof above them has
+  // a shape the tags do not give, so its prism only bounds where the building may be (thesis
+  // 7.1): the validator aims at it but never lets it block.
+  for (const Polygon& p : f.polygons) {
+    const double wall = w.cut ? std::max(w.eaves, f.min_height) : h;
+    add_prism_surfaces(p, f.min_height, wall, true, true, o.surfaces);
+    if (wall < h) add_prism_surfaces(p, wall, h, false, false, o.surfaces);
+  }
   // Parts that do not reach the ground (min_height > 0, or a base we cannot read) leave open
   // space below them; the occluders downstream are 2.5D prisms standing on the ground, so such
   // parts give none (never volume below min_height).

@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The whole bake against the independent ray-cast ground truth (urbanpvs-validate's core): zero
-// misses on generated cities with flat and LoD2 roofs, and a deliberately broken bake (occluders
-// not shrunk) must be caught.
+// misses on generated cities with flat and LoD2 roofs and on Delft, a deliberately broken bake
+// (occluders not shrunk) must be caught, and so must occluders that a reader derived wrongly
+// from the input's surfaces (tests/data/validate: one scene per mistake, each with a small
+// building that the wrong occluder hides from the view cells in front). Before them, the ray
+// scene itself on hand-built boxes: what blocks, the ground under buildings, cracks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "urbanpvs/cities/city_generator.hpp"
@@ -15,6 +19,9 @@
 
 namespace urbanpvs {
 namespace {
+
+using geometry::Vec2;
+using validate::Point3;
 
 geometry::City generated(std::uint64_t seed, cities::RoofMode roofs) {
   cities::CityParams p;
@@ -61,6 +68,146 @@ validate::ValidationReport bake_and_validate(const geometry::City& city,
   return r;
 }
 
+// ---- the ray scene on hand-built boxes -------------------------------------------------------
+
+// A box building: its six faces as the input's surfaces, its box, footprint and occluder.
+geometry::CityObject box_object(std::uint32_t index, double x0, double y0, double x1, double y1,
+                                double z0, double z1) {
+  geometry::CityObject o;
+  o.index = index;
+  o.source_id = "box" + std::to_string(index);
+  using V = std::array<double, 3>;
+  auto face = [&](V a, V b, V c, V d) { o.surfaces.push_back({{{a, b, c, d}}}); };
+  face({x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, y0, z0});
+  face({x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1});
+  face({x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1});
+  face({x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1});
+  face({x1, y1, z0}, {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1});
+  face({x0, y1, z0}, {x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1});
+  o.bbox.extend(Vec2{x0, y0}, z0);
+  o.bbox.extend(Vec2{x1, y1}, z1);
+  o.ground_z = z0;
+  const geometry::Polygon fp{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {}};
+  o.footprint = {fp};
+  o.occluders = {{fp, z0, z1}};
+  return o;
+}
+
+geometry::City city_of(std::vector<geometry::CityObject> objects) {
+  geometry::City c;
+  c.objects = std::move(objects);
+  return c;
+}
+
+TEST(ValidateRayScene, OtherObjectsSurfacesBlock) {
+  // A wall (box 0) between the viewpoint and box 1.
+  const geometry::City c =
+      city_of({box_object(0, 0, 0, 1, 10, 0, 5), box_object(1, 10, 0, 20, 10, 0, 5)});
+  const validate::RayScene s(c);
+  EXPECT_FALSE(s.reaches({-5, 5, 1}, {10, 5, 1}, 1));  // through the wall
+  EXPECT_TRUE(s.reaches({-5, 5, 8}, {10, 5, 4}, 1));   // over it
+  EXPECT_TRUE(s.reaches({-5, 15, 1}, {10, 9, 1}, 1));  // beside it
+  // A segment ending on the wall's own face reaches the wall.
+  EXPECT_TRUE(s.reaches({-5, 5, 1}, {0, 5, 1}, 0));
+}
+
+TEST(ValidateRayScene, FarSideIsSeenWhereTheSegmentMeetsTheObjectFirst) {
+  // Box 1 stands inside box 0 (an installation): a target on box 0's far side, reached through
+  // box 0's near wall and then box 1, still shows box 0 (at its near wall)...
+  geometry::City c =
+      city_of({box_object(0, 0, 0, 30, 10, 0, 5), box_object(1, 12, 4, 14, 6, 0, 4)});
+  EXPECT_TRUE(validate::RayScene(c).reaches({-5, 5, 1}, {30, 5, 1}, 0));
+  // ...but not when box 2 stands before the near wall.
+  c.objects.push_back(box_object(2, -3, 4, -2, 6, 0, 4));
+  EXPECT_FALSE(validate::RayScene(c).reaches({-5, 5, 1}, {30, 5, 1}, 0));
+}
+
+TEST(ValidateRayScene, ViewsPassBelowARaisedPartButNotBelowAFloatingBase) {
+  // Box 0 floats 0.5 m above the ground (Delft: bases above the ground interpolated between
+  // buildings): the ground is under it. Box 2 is raised 5 m (a skyway between box 0 and box 3):
+  // open below. Box 1 is the target.
+  const geometry::City c =
+      city_of({box_object(0, 0, 0, 10, 10, 0.5, 5), box_object(1, 20, 0, 30, 10, 0, 5),
+               box_object(2, 0, 20, 10, 30, 5, 8), box_object(3, -10, 20, 0, 30, 0, 8)});
+  const validate::RayScene s(c);
+  EXPECT_FALSE(s.reaches({-10, 5, 0.2}, {20, 5, 0.2}, 1));  // under the floating base
+  EXPECT_FALSE(s.reaches({-10, 5, 0.6}, {20, 5, 0.6}, 1));  // through its walls
+  EXPECT_TRUE(s.reaches({5, 40, 1}, {5, 15, 1}, 1));        // under the skyway
+  EXPECT_FALSE(s.reaches({5, 40, 6}, {5, 15, 6}, 1));       // through the skyway
+}
+
+TEST(ValidateRayScene, ObjectWithoutOccluderIsItsWholeBoxAndBlocksNothing) {
+  geometry::City c =
+      city_of({box_object(0, 0, 0, 10, 10, 0, 5), box_object(1, 20, 0, 30, 10, 0, 5)});
+  c.objects[0].occludes = false;
+  c.objects[0].occluders.clear();
+  const validate::RayScene s(c);
+  EXPECT_TRUE(s.reaches({-10, 5, 1}, {20, 5, 1}, 1));
+  std::vector<std::pair<std::uint32_t, double>> met;
+  s.first_met({-10, 5, 1}, {40, 5, 1}, met);
+  ASSERT_EQ(met.size(), 2u);  // box 0's box, then box 1's wall
+  EXPECT_EQ(met[0].first, 0u);
+  EXPECT_EQ(met[1].first, 1u);
+  // Its targets cover its whole box.
+  const auto points = validate::box_points(c.objects[0].bbox, 2.0);
+  EXPECT_TRUE(std::any_of(points.begin(), points.end(), [](const Point3& p) { return p.z == 5; }));
+}
+
+TEST(ValidateTargets, SpreadOverTheSurfaceAndItsEdgesButNotItsHoles) {
+  // A wall 10 m wide, 6 m high with a 2 m × 2 m window.
+  const geometry::Surface3 wall{{{{0, 0, 0}, {10, 0, 0}, {10, 0, 6}, {0, 0, 6}},
+                                 {{4, 0, 2}, {4, 0, 4}, {6, 0, 4}, {6, 0, 2}}}};
+  const std::vector<Point3> points = validate::surface_points(wall, 1.0);
+  EXPECT_GT(points.size(), 60u);
+  for (const Point3& p : points) {
+    EXPECT_DOUBLE_EQ(p.y, 0);
+    EXPECT_TRUE(p.x >= 0 && p.x <= 10 && p.z >= 0 && p.z <= 6);
+    EXPECT_FALSE(p.x > 4 && p.x < 6 && p.z > 2 && p.z < 4) << p.x << " " << p.z;
+  }
+  // Every point of the wall is within one spacing of a target.
+  for (double x = 0; x <= 10; x += 0.25)
+    for (double z = 0; z <= 6; z += 0.25) {
+      double nearest = 1e9;
+      for (const Point3& p : points) nearest = std::min(nearest, std::hypot(p.x - x, p.z - z));
+      EXPECT_LE(nearest, 1.0) << x << " " << z;
+    }
+}
+
+// Two buildings 3 mm apart (digitizing noise between shared walls) with a target beyond the
+// gap, seen exactly along it: closed by the default crack, open without it; a 10 cm alley
+// stays open.
+TEST(ValidateCrack, GapNarrowerThanTheCrackIsClosedWiderStaysOpen) {
+  for (double gap : {0.003, 0.1}) {
+    const geometry::City c =
+        city_of({box_object(0, 0, -10, 20, 0, 0, 6), box_object(1, 0, gap, 20, 10, 0, 6),
+                 box_object(2, 30, -5, 35, 5, 0, 6)});
+    const validate::RayScene s(c);
+    const Point3 v{-10, 0.5 * gap, 1}, target{30, 0.5 * gap, 1};
+    EXPECT_TRUE(validate::target_seen(s, v, target, 2, 0.0)) << gap;
+    EXPECT_EQ(validate::target_seen(s, v, target, 2, 0.05), gap > 0.05) << gap;
+  }
+  // Walls shared exactly (coincident polygons of two buildings) are closed too.
+  const geometry::City shared =
+      city_of({box_object(0, 0, -10, 20, 0, 0, 6), box_object(1, 0, 0, 20, 10, 0, 6),
+               box_object(2, 30, -5, 35, 5, 0, 6)});
+  const validate::RayScene s(shared);
+  EXPECT_FALSE(validate::target_seen(s, {-10, 0, 1}, {30, 0, 1}, 2, 0.05));
+}
+
+TEST(ValidateOptions, OutOfLimitsIsRefused) {
+  validate::ValidationOptions o;
+  EXPECT_NO_THROW(o.validate());
+  o.crack = 1.5;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.crack = -0.01;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.point_spacing = 0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+}
+
+// ---- whole bakes -----------------------------------------------------------------------------
+
 TEST(Validate, NoMissesOnFlatCity) {
   const geometry::City city = generated(3, cities::RoofMode::Flat);
   const auto r = bake_and_validate(city, small_bake(city, 1.0, 1.39), 2000);
@@ -98,6 +245,161 @@ TEST(Validate, CatchesUnshrunkOccluders) {
   v.viewpoints = 3000;
   v.tightness_viewpoints = 0;
   EXPECT_FALSE(validate::validate(city, file, v).misses.empty());
+}
+
+// ---- occluders derived wrongly from the input's surfaces --------------------------------------
+// The scenes of tests/data/validate are written in metres from the files' "translate"
+// (CityJSON) or from (85000, 446000) (GeoJSON): a building, a small target building that the
+// wrong occluder hides, and view cells in front. Each reads the file, bakes it with its
+// occluders made wrong after reading, and expects misses naming the target; with the right
+// occluders (the reader's own where it already derives them right) it expects none.
+
+constexpr double kSceneX = 85000, kSceneY = 446000;
+
+struct Scene {
+  geometry::City city;
+
+  static Scene read(const std::string& name) {
+    const std::filesystem::path path = std::filesystem::path(URBANPVS_VALIDATE_DATA) / name;
+    return {geometry::read_city({path.string()}, {})};
+  }
+  // Scene coordinates to the city's local frame.
+  Vec2 at(double x, double y) const {
+    return {kSceneX + x - city.frame.origin[0], kSceneY + y - city.frame.origin[1]};
+  }
+  double z(double h) const { return h - city.frame.origin[2]; }
+  geometry::Polygon rect(double x0, double y0, double x1, double y1) const {
+    return {{at(x0, y0), at(x1, y0), at(x1, y1), at(x0, y1)}, {}};
+  }
+  geometry::CityObject& object(const std::string& id) {
+    auto it = std::find_if(city.objects.begin(), city.objects.end(),
+                           [&](const geometry::CityObject& o) { return o.source_id == id; });
+    if (it == city.objects.end()) throw std::runtime_error("no object " + id);
+    return *it;
+  }
+
+  // Bakes with view cells over the rectangle (scene coordinates) at eyes eye_min .. eye_max
+  // above the ground, validates, and returns how many misses name `target`.
+  std::size_t misses_of(const std::string& target, const geometry::Polygon& region, double eye_min,
+                        double eye_max, double eps = 1.0) const {
+    preprocess::BakeOptions o;
+    o.cells.epsilon = eps;
+    o.cells.max_cell_edge = 4;
+    o.cells.eye_min = eye_min;
+    o.cells.eye_max = eye_max;
+    o.cells.region = {region};
+    o.pixel = 0.99 * eps / (std::sqrt(0.5) + 1.0 / 128);
+    const runtime::PvsBake bake = preprocess::bake_city(city, o);
+    runtime::PvsFile file;
+    EXPECT_EQ(runtime::PvsFile::open_owned(runtime::encode(bake), file), runtime::Status::kOk);
+    validate::ValidationOptions v;
+    v.viewpoints = 400;
+    v.tightness_viewpoints = 40;
+    const validate::ValidationReport r = validate::validate(city, file, v);
+    const auto n = static_cast<std::size_t>(
+        std::count_if(r.misses.begin(), r.misses.end(),
+                      [&](const validate::Miss& m) { return m.object_id == target; }));
+    std::printf("cells %zu rays %zu misses %zu (%zu of %s)\n", bake.cells.size(), r.rays,
+                r.misses.size(), n, target.c_str());
+    return n;
+  }
+};
+
+// (a) A gabled roof (eaves 8 m, ridge 12 m along x) whose occluder reaches the ridge: from
+// viewpoints 9-10 m up (upper floors across the street) looking along the ridge, the tower
+// behind shows over the eaves.
+TEST(ValidateCatches, GableOccluderUpToTheRidge) {
+  Scene s = Scene::read("gable.city.json");
+  const geometry::Polygon cells = s.rect(-15, 1.5, -2, 4);
+  EXPECT_EQ(s.misses_of("tower", cells, 9, 10), 0u);  // the reader's eaves
+  for (geometry::OccluderPrism& p : s.object("gable").occluders) p.top_z = s.z(12);
+  EXPECT_GT(s.misses_of("tower", cells, 9, 10), 0u);
+}
+
+// (b) A part with a roof terrace at 4 m before its 10 m roof, whose occluder takes the 10 m:
+// from 5-6 m up, the kiosk beyond the terrace shows over it.
+TEST(ValidateCatches, TerraceOccluderAtTheHigherRoof) {
+  Scene s = Scene::read("terrace.city.json");
+  const geometry::Polygon cells = s.rect(-15, 2.5, -2, 7.5);
+  EXPECT_EQ(s.misses_of("kiosk", cells, 5, 6), 0u);  // the reader's lowest roof point
+  for (geometry::OccluderPrism& p : s.object("terrace").occluders) p.top_z = s.z(10);
+  EXPECT_GT(s.misses_of("kiosk", cells, 5, 6), 0u);
+}
+
+// (c) A part raised 5 m above the street (under it an OuterCeilingSurface, or nothing) given
+// an occluder standing on the ground: the shed behind shows under it from the street.
+TEST(ValidateCatches, RaisedPartStandingOnTheGround) {
+  for (const char* file : {"raised-ceiling.city.json", "raised-open.city.json"}) {
+    SCOPED_TRACE(file);
+    Scene s = Scene::read(file);
+    const geometry::Polygon cells = s.rect(15, -12, 35, -2);
+    EXPECT_EQ(s.misses_of("shed", cells, 0, 2), 0u);  // the reader leaves the raised part out
+    s.object("arcade").occluders.push_back({s.rect(10, 0, 40, 10), s.z(0), s.z(12)});
+    EXPECT_GT(s.misses_of("shed", cells, 0, 2), 0u);
+  }
+}
+
+// (d) An occluder whose footprint takes in the roof's 2 m eaves overhang: the kiosk under the
+// overhang, beside the wall, is inside it, yet seen from the street.
+TEST(ValidateCatches, OccluderOverTheEavesOverhang) {
+  Scene s = Scene::read("overhang.city.json");
+  const geometry::Polygon cells = s.rect(0, -15, 20, -3);
+  EXPECT_EQ(s.misses_of("kiosk", cells, 0, 2, 0.5), 0u);  // the reader's ground footprint
+  for (geometry::OccluderPrism& p : s.object("eaves").occluders)
+    p.footprint = s.rect(-2, -2, 22, 12);
+  EXPECT_GT(s.misses_of("kiosk", cells, 0, 2, 0.5), 0u);
+}
+
+// (e) A GeoJSON house with roof:shape=gabled, height=12, roof:height=4 whose occluder is cut at
+// 12 m instead of the eaves at 8 m: the tower shows over the eaves, as in (a). The ground truth
+// is the surfaces the reader gives; while they are a prism up to the full 12 m, they hold the
+// air over the eaves as solid as the wrong occluder does, and nothing can tell them apart.
+TEST(ValidateCatches, GeoJsonGableCutAtItsFullHeight) {
+  Scene s = Scene::read("gable.geojson");
+  const geometry::Polygon cells = s.rect(-15, 1.5, -2, 4);
+  const std::uint32_t tower = s.object("tower").index;
+  const Vec2 front = s.at(15, -5), over_eaves = s.at(15, 1);
+  // The reader's roof above the eaves is a target only (Surface3::blocks): the ground truth
+  // sees over the eaves, through the space the roof may or may not fill.
+  ASSERT_TRUE(validate::RayScene(s.city).reaches({front.x, front.y, s.z(11)},
+                                                 {over_eaves.x, over_eaves.y, s.z(11)}, tower));
+  EXPECT_EQ(s.misses_of("tower", cells, 9, 10), 0u);  // the reader's eaves
+  for (geometry::OccluderPrism& p : s.object("gable").occluders) p.top_z = s.z(12);
+  EXPECT_GT(s.misses_of("tower", cells, 9, 10), 0u);
+}
+
+// (e) again with the gabled roof's own surfaces (ridge along the longest side, OSM's default),
+// as the GeoJSON reader should give them: then the wrong occluder is caught.
+TEST(ValidateCatches, GeoJsonGableCutAtItsFullHeightWithTheRoofsSurfaces) {
+  Scene s = Scene::read("gable.geojson");
+  const geometry::Polygon cells = s.rect(-15, 1.5, -2, 4);
+  auto p = [&](double x, double y, double h) {
+    const Vec2 q = s.at(x, y);
+    return std::array<double, 3>{q.x, q.y, s.z(h)};
+  };
+  geometry::CityObject& gable = s.object("gable");
+  gable.surfaces = {
+      {{{p(0, 0, 0), p(0, 20, 0), p(30, 20, 0), p(30, 0, 0)}}},
+      {{{p(0, 0, 0), p(30, 0, 0), p(30, 0, 8), p(0, 0, 8)}}},
+      {{{p(30, 0, 0), p(30, 20, 0), p(30, 20, 8), p(30, 10, 12), p(30, 0, 8)}}},
+      {{{p(30, 20, 0), p(0, 20, 0), p(0, 20, 8), p(30, 20, 8)}}},
+      {{{p(0, 20, 0), p(0, 0, 0), p(0, 0, 8), p(0, 10, 12), p(0, 20, 8)}}},
+      {{{p(0, 0, 8), p(30, 0, 8), p(30, 10, 12), p(0, 10, 12)}}},
+      {{{p(0, 10, 12), p(30, 10, 12), p(30, 20, 8), p(0, 20, 8)}}},
+  };
+  EXPECT_EQ(s.misses_of("tower", cells, 9, 10), 0u);  // the reader's eaves
+  for (geometry::OccluderPrism& o : gable.occluders) o.top_z = s.z(12);
+  EXPECT_GT(s.misses_of("tower", cells, 9, 10), 0u);
+}
+
+// (f) A GeoJSON building:part with min_height=5 given occluder volume from the ground: the shed
+// behind shows under it, as in (c).
+TEST(ValidateCatches, GeoJsonRaisedPartFromTheGround) {
+  Scene s = Scene::read("raised.geojson");
+  const geometry::Polygon cells = s.rect(15, -12, 35, -2);
+  EXPECT_EQ(s.misses_of("shed", cells, 0, 2), 0u);  // the reader leaves min_height parts out
+  s.object("arcade").occluders.push_back({s.rect(10, 0, 40, 10), s.z(0), s.z(12)});
+  EXPECT_GT(s.misses_of("shed", cells, 0, 2), 0u);
 }
 
 }  // namespace

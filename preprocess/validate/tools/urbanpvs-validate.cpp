@@ -1,9 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // urbanpvs-validate CITY... PVS: an independent ground truth for a PVS file (see Validator.hpp).
-// Exit 0: no miss; 1: misses found (listed); 2: usage; 10-17: input errors; 4: the file does not
-// belong to the city or cannot be read.
+// The ground truth is the input's own surfaces as the readers give them (CityObject::surfaces:
+// CityJSON's surfaces of the chosen LoD, GeoJSON's extruded footprints), never the occluders
+// derived from them: every surface polygon of an occluding object blocks, the ground under a
+// building is solid, an object without valid occluder geometry blocks nothing and may be
+// anywhere in its box. Targets are points over all surfaces (--point-spacing); cracks narrower
+// than --crack are closed. From the PVS file only its object ids, cells and PVSs are read.
+// Exit 0: no miss; 1: misses found (listed); 2: usage (an option out of its limits too); 4: the
+// file does not belong to the city or cannot be read; 10 and above: input errors, with
+// urbanpvs-preprocess's codes (geometry::exit_code).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <stdexcept>
 
 #include "urbanpvs/geometry/CityReader.hpp"
 #include "urbanpvs/geometry/InputError.hpp"
@@ -11,26 +19,59 @@
 
 int main(int argc, char** argv) {
   using namespace urbanpvs;
-  CLI::App app{"Checks a PVS file against ray casting in the real city: every object seen from a "
-               "random viewpoint of a cell but missing from its PVS is a miss."};
+  CLI::App app{
+      "Checks a PVS file against ray casting in the input's own surfaces: every object seen "
+      "from a random viewpoint of a cell but missing from its PVS is a miss."};
   std::vector<std::string> inputs;
   double default_height = 0;
   validate::ValidationOptions options;
   app.add_option("inputs", inputs, "City files, then the PVS file")->required()->expected(2, -1);
+  // The city must be read as for the bake.
+  geometry::ReadOptions read;
+  std::string coordinates = "auto";
   app.add_option("--default-height", default_height, "As given to the preprocessor (m)");
-  app.add_option("--viewpoints", options.viewpoints, "Random viewpoints checked")->capture_default_str();
+  app.add_option("--level-height", read.level_height, "As given to the preprocessor (m)")
+      ->capture_default_str();
+  app.add_option("--max-height", read.max_height, "As given to the preprocessor (m)")
+      ->capture_default_str();
+  app.add_option("--coordinates", coordinates, "As given to the preprocessor")
+      ->type_name("auto|geographic|projected")
+      ->capture_default_str();
+  app.add_option("--viewpoints", options.viewpoints, "Random viewpoints checked")
+      ->capture_default_str();
   app.add_option("--tightness-viewpoints", options.tightness_viewpoints,
-                 "Viewpoints that also count the objects seen")->capture_default_str();
+                 "Viewpoints that also count the objects seen")
+      ->capture_default_str();
+  app.add_option("--point-spacing", options.point_spacing,
+                 "Largest distance in m between target points on a surface (0.1 .. 1000)")
+      ->type_name("M")
+      ->capture_default_str();
+  app.add_option("--crack", options.crack,
+                 "Openings between buildings narrower than this many m are closed (0 .. 1; "
+                 "keep it at most the bake's --gap: wider hides real misses)")
+      ->type_name("M")
+      ->capture_default_str();
   app.add_option("--seed", options.seed, "Random seed")->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  try {
+    options.validate();
+    if (coordinates != "auto" && coordinates != "geographic" && coordinates != "projected")
+      throw std::invalid_argument("--coordinates must be auto, geographic or projected");
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
+    return 2;
+  }
   const std::string pvs_path = inputs.back();
   inputs.pop_back();
-  geometry::ReadOptions read;
   if (default_height > 0) read.default_height = default_height;
+  using Coordinates = geometry::ReadOptions::Coordinates;
+  read.coordinates = coordinates == "geographic"  ? Coordinates::Geographic
+                     : coordinates == "projected" ? Coordinates::Projected
+                                                  : Coordinates::Auto;
   try {
     const geometry::City city = geometry::read_city(inputs, read);
     runtime::PvsFile file;
@@ -42,10 +83,14 @@ int main(int argc, char** argv) {
     }
     const validate::ValidationReport r = validate::validate(city, file, options);
     std::printf("viewpoints: %zu, rays: %zu, misses: %zu\n", r.viewpoints, r.rays, r.misses.size());
-    std::printf("tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
-                r.tightness(), double(r.pvs_total) / double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
-                double(r.seen_total) / double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
-                std::min(r.viewpoints, options.tightness_viewpoints));
+    std::printf(
+        "tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
+        r.tightness(),
+        double(r.pvs_total) /
+            double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
+        double(r.seen_total) /
+            double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
+        std::min(r.viewpoints, options.tightness_viewpoints));
     for (std::size_t i = 0; i < r.misses.size() && i < 20; ++i) {
       const validate::Miss& m = r.misses[i];
       std::printf("MISS cell %u viewpoint (%.3f, %.3f, %.3f) sees %s at (%.3f, %.3f, %.3f)\n",

@@ -46,6 +46,9 @@ struct Triangle3 {
 /// them, so a mistake in deriving occluders cannot hide itself.
 struct Surface3 {
   std::vector<std::vector<std::array<double, 3>>> rings;
+  /// False for a surface that bounds where the building may be, not where it surely is (a roof
+  /// of unknown shape above the eaves): a target of validation, never a blocker.
+  bool blocks = true;
 };
 
 /// One building (with all its parts): the unit a PVS lists.

@@ -1,16 +1,25 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The ground truth of urbanpvs-validate: the real buildings as prisms, traced by rays. It shares
-// no code with the cull-map path, so an error there cannot hide here.
-//  - Blockers are the buildings' occluder prisms *before* shrinking (ground footprint up to the
-//    lowest roof point, and down into the ground below it; grown by half the bake's block gap
-//    tolerance, at least 1 mm, so that buildings sharing a wall, or closer than the gap the
-//    bake fuses, are one solid): solid for sure, so a ray they stop is really stopped.
-//  - Targets are each building's footprint up to its highest point: a ray that enters a target
-//    before any blocker sees that building.
+// The ground truth of urbanpvs-validate: the input's own surfaces (CityObject::surfaces), traced
+// by segments. It uses neither the occluders the readers derive from those surfaces nor the
+// cull-map code, so a mistake in either (an occluder too tall, too wide, standing where the
+// building floats) cannot hide itself here.
+//  - Blockers are the surface polygons of every object that occludes (CityObject::occludes and
+//    surfaces given), as planar polygons with holes: a segment meets one where it crosses the
+//    polygon's plane (Newell normal) at a point inside its rings, in the projection that drops
+//    the normal's largest axis.
+//  - The ground holds up every building: below the foot of each wall that stands on the ground
+//    (within 1 m of it) hangs a skirt, the wall continued down into the earth. So a viewpoint
+//    lower than a building's foot (Delft: bases float up to ~0.5 m above the ground
+//    interpolated between buildings; the 3D BAG has walls starting 25 cm above a base slab)
+//    does not look under it through the earth, while views under raised parts (feet higher up)
+//    stay open. Skirts block every object's segments, their own building's too.
+//  - Objects that do not occlude (geometry beyond repair, unknown height) block nothing and are
+//    as large as they may be: their whole box is theirs.
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <deque>
+#include <utility>
 #include <vector>
 
 #include "urbanpvs/geometry/CityModel.hpp"
@@ -18,52 +27,118 @@
 namespace urbanpvs::validate {
 
 using geometry::Box2;
-using geometry::Polygon;
+using geometry::Box3;
 using geometry::Vec2;
 
 struct Point3 {
   double x = 0, y = 0, z = 0;
 };
 
+/// Points spread over one planar surface: every vertex, points along every ring edge and a
+/// lattice over the inside (holes left out), no two neighbours farther apart than `spacing`
+/// (m, > 0). A surface of no area gives its vertices.
+std::vector<Point3> surface_points(const geometry::Surface3& surface, double spacing);
+
+/// The same over the six faces of a box.
+std::vector<Point3> box_points(const Box3& box, double spacing);
+
+/// Queries keep scratch state (visit stamps, the last blocker): one RayScene per thread.
 class RayScene {
  public:
-  /// Blocker footprints grow by `crack` (m): buildings closer than 2·crack are one solid.
-  explicit RayScene(const geometry::City& city, double crack = kSharedWall);
-  RayScene(const RayScene&) = delete;  // prisms point into grown_
-  RayScene& operator=(const RayScene&) = delete;
+  explicit RayScene(const geometry::City& city);
 
-  static constexpr double kSharedWall = 1e-3;  ///< [m] least growth: closes shared walls
+  /// Whether the object's surfaces are blockers; otherwise it is its box, blocking nothing.
+  static bool blocks(const geometry::CityObject& object) {
+    return object.occludes && !object.surfaces.empty();
+  }
 
-  /// True when the open segment p→q passes through a blocker of any object other than `skip`.
-  bool blocked(const Point3& p, const Point3& q, std::uint32_t skip) const;
+  /// [m] Hits of another object this close before the end of a segment, or before the point
+  /// where it meets its own object, do not stop it: walls shared by two buildings are two
+  /// coincident polygons, one of each.
+  static constexpr double kCoincident = 1e-3;
 
-  /// Objects whose targets the segment p→q enters before its first blocker, appended to `seen`.
-  void seen_along(const Point3& p, const Point3& q, std::vector<std::uint32_t>& seen) const;
+  /// True when the segment p→q (q a point of `object`, or near one) reaches `object` or q
+  /// before any blocker: no surface of another object and no skirt (the earth) lies on it up
+  /// to kCoincident before q, or up to where it first meets `object` itself.
+  bool reaches(const Point3& p, const Point3& q, std::uint32_t object) const;
+
+  /// Every object the segment p→q meets before any blocker stops it, with the parameter in
+  /// [0, 1] where it meets it: the object of the first surface it meets (none when that is a
+  /// skirt), and the objects without blockers whose box it enters before that.
+  void first_met(const Point3& p, const Point3& q,
+                 std::vector<std::pair<std::uint32_t, double>>& met) const;
 
   const Box2& bounds() const { return bounds_; }
 
  private:
-  static constexpr double kBelowGround = -1e6;  ///< [m] where blockers end below the ground
-  struct Prism {
-    const Polygon* footprint;
-    Box2 box;
-    double zmin, zmax;
+  static constexpr double kNone = 2;  ///< "no hit": beyond every segment parameter
+  /// One blocker polygon, its rings projected to the plane that drops axis `drop`.
+  struct Face {
+    std::array<double, 3> normal;  // unit
+    double offset;                 // normal · x on the plane
+    int drop;
+    std::uint32_t first_ring, end_ring;  // into ring_start_
+    std::array<double, 3> lo, hi;        // bounding box
     std::uint32_t object;
-    bool blocker;  // else a target
+    bool blocks = true;  // false: a surface the building may reach, a target only
   };
-  /// Entry parameter t in [0, 1] of the segment into the prism, or > 1 when it misses.
-  static double entry(const Prism& prism, const Point3& p, const Point3& q);
-  template <class F>
-  void for_each_candidate(const Point3& p, const Point3& q, F&& f) const;
+  struct TargetBox {
+    Box3 box;
+    std::uint32_t object;
+  };
+  enum Kind : std::uint32_t { kFace = 0, kSkirt = 1u << 30, kBox = 2u << 30 };
+  static constexpr std::uint32_t kKindMask = 3u << 30;
 
-  std::deque<Polygon> grown_;  ///< blocker footprints (stable addresses)
-  std::vector<Prism> prisms_;
+  struct Segment {
+    Point3 p, d;                   // p + t·d for t in [0, 1]
+    std::array<double, 3> lo, hi;  // bounding box of the part for t in [0, t_max]
+    Segment(const Point3& from, const Point3& to, double t_max);
+  };
+
+  /// Makes `face` the blocker polygon of the rings; false when they have no area.
+  bool make_face(const std::vector<std::vector<std::array<double, 3>>>& rings, std::uint32_t object,
+                 Face& face);
+  void add_face(const std::vector<std::vector<std::array<double, 3>>>& rings, std::uint32_t object,
+                bool blocks);
+  /// Skirts below the bottom edges of a wall polygon whose foot is at most `highest_foot`,
+  /// reaching down to `deep`.
+  void add_skirts(const std::vector<std::array<double, 3>>& wall,
+                  const std::array<double, 3>& normal, double highest_foot, double deep,
+                  std::uint32_t object);
+  bool inside_rings(std::uint32_t first_ring, std::uint32_t end_ring, Vec2 p) const;
+  /// Parameter in (0, t_max) where the segment meets the face, else kNone.
+  double face_hit(const Face& f, const Segment& s, double t_max) const;
+  static double box_entry(const Box3& box, const Segment& s, double t_max);
+  /// Parameter in (0, t_max) where the segment first meets `object`'s own faces, else kNone.
+  double own_hit(std::uint32_t object, const Segment& s, double t_max) const;
+  /// Parameter in (0, t_max) where grid entry `entry`, a blocker of an object other than
+  /// `object` (or the earth), meets the segment, else kNone.
+  double blocker_hit(std::uint32_t entry, const Segment& s, std::uint32_t object,
+                     double t_max) const;
+  /// Parameter in (0, t_max) where some blocker of an object other than `object` (not
+  /// necessarily the first) meets the segment, else kNone.
+  double some_blocker_before(const Segment& s, std::uint32_t object, double t_max) const;
+  /// Visits the grid entries along the segment's plan, each once, in the order of the cells
+  /// the segment passes; stops when `visit` returns true or the next cell starts beyond
+  /// *horizon (which `visit` may lower).
+  template <class F>
+  void walk(const Segment& s, const double* horizon, F&& visit) const;
+
+  std::vector<Face> faces_;                  // grouped by object
+  std::vector<std::uint32_t> object_faces_;  // object o's faces: [object_faces_[o], [o + 1])
+  std::vector<Face> skirts_;
+  std::vector<TargetBox> boxes_;
+  std::vector<std::int32_t> box_of_;       // object → its index in boxes_, or -1 when it blocks
+  std::vector<std::uint32_t> ring_start_;  // ring r: ring_vertex_[ring_start_[r] .. [r + 1])
+  std::vector<Vec2> ring_vertex_;
   Box2 bounds_;
-  double cell_ = 20;
+  double cell_ = 8;  // [m] side of a grid cell
   int nx_ = 1, ny_ = 1;
-  std::vector<std::vector<std::uint32_t>> grid_;
-  mutable std::vector<std::uint32_t> stamp_;
+  std::vector<std::vector<std::uint32_t>> grid_;  // Kind | index
+  mutable std::vector<std::uint32_t> face_stamp_, skirt_stamp_, box_stamp_;
   mutable std::uint32_t query_ = 0;
+  static constexpr std::uint32_t kNoBlocker = ~0u;
+  mutable std::uint32_t last_blocker_ = kNoBlocker;  // the grid entry that blocked last
 };
 
 }  // namespace urbanpvs::validate

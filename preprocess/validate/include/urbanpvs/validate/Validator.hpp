@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// urbanpvs-validate's core: checks a PVS file against ray casting in the real city. From random
-// viewpoints inside the cells (on the top face and inside the prism) it casts rays towards the
-// surface of every object missing from the cell's PVS: an unblocked ray is a *miss*, the worst
-// bug a PVS can have. It also measures tightness: |PVS| over the number of objects actually
-// seen (point rays to every object plus a cube map of directions).
+// urbanpvs-validate's core: checks a PVS file against ray casting in the input's own surfaces
+// (RayScene). From random viewpoints inside the cells (on the top face and inside the prism) it
+// casts segments towards target points spread over every surface of every object missing from
+// the cell's PVS (over the box of an object that does not occlude): an object whose target is
+// reached is a *miss*, the worst bug a PVS can have. Cracks narrower than
+// ValidationOptions::crack between blockers are closed (target_seen). It also measures
+// tightness: |PVS| over the number of objects actually seen (the target segments plus a cube
+// map of directions; an object a cube-map ray meets first and that is absent from the PVS is a
+// miss too).
 #pragma once
 
 #include <cstdint>
@@ -19,9 +23,23 @@ namespace urbanpvs::validate {
 struct ValidationOptions {
   std::size_t viewpoints = 2000;           ///< viewpoints checked for misses
   std::size_t tightness_viewpoints = 200;  ///< of those, the first n also measure tightness
-  int cube_resolution = 16;                ///< rays per cube face side for tightness
-  double point_spacing = 2.0;              ///< [m] between target points along walls
+  int cube_resolution = 16;                ///< rays per cube face side for tightness [1 .. 1024]
+  /// Largest distance between neighbouring target points on a surface. [Units: m]
+  /// [Limit: 0.1 .. 1000]
+  double point_spacing = 2.0;
+  /// Openings between blockers narrower than this are closed: a target counts as seen only
+  /// when the segment to it and four parallel ones crack/2 to its sides (horizontally and
+  /// vertically, across the segment) all reach it. The default matches the bake's default
+  /// block gap tolerance (urbanpvs-preprocess --gap 0.05): gaps narrower than that between
+  /// buildings are digitizing noise between shared walls, which the bake fuses too. 0: single
+  /// segments, nothing closed (shared walls may then leak along their plane). A value above the
+  /// bake's --gap hides real misses through openings narrower than it. [Units: m]
+  /// [Limit: 0 .. 1]
+  double crack = 0.05;
   std::uint64_t seed = 1;
+
+  /// Throws std::invalid_argument naming the first value out of its limits.
+  void validate() const;
 };
 
 struct Miss {
@@ -29,20 +47,28 @@ struct Miss {
   Point3 viewpoint;
   std::uint32_t object = 0;
   std::string object_id;
-  Point3 target;  ///< the point of the object the ray reached
+  Point3 target;  ///< the point of the object the segments reached
 };
 
 struct ValidationReport {
   std::size_t viewpoints = 0;
-  std::size_t rays = 0;
+  std::size_t rays = 0;  ///< segments cast (a target seen costs five with a crack > 0)
   std::vector<Miss> misses;
   std::size_t pvs_total = 0;   ///< summed |PVS| over the tightness viewpoints
   std::size_t seen_total = 0;  ///< summed number of objects seen from them
   double tightness() const { return seen_total ? double(pvs_total) / double(seen_total) : 0; }
 };
 
+/// Whether target q of `object` is seen from v through an opening at least `crack` (m) wide:
+/// the segment v→q and four parallel ones crack/2 to its sides (horizontally and vertically,
+/// across it) all reach it (RayScene::reaches). Why this closes cracks and hides no wider view:
+/// see Validator.cpp. Adds the segments cast to *rays when given.
+bool target_seen(const RayScene& scene, const Point3& v, const Point3& q, std::uint32_t object,
+                 double crack, std::size_t* rays = nullptr);
+
 /// Throws std::runtime_error when the file does not belong to the city (object count or ids
-/// differ). `city` must be read with the same options as for the bake.
+/// differ), std::invalid_argument for options out of their limits. `city` must be read with
+/// the same options as for the bake.
 ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pvs,
                           const ValidationOptions& options);
 
