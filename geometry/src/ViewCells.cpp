@@ -124,9 +124,9 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
           "ViewCellOptions.region: the city has no buildings to take a default region from");
     // The union of the rectangles is a staircase whose short steps the mesher would fill with
     // small cells; within a fifth of the margin its outline does just as well.
-    mesh.options.region = options.margin > 0
-                              ? detail::simplify_boundaries(union_polygons(near), 0.2 * options.margin)
-                              : near;
+    mesh.options.region =
+        options.margin > 0 ? detail::simplify_boundaries(union_polygons(near), 0.2 * options.margin)
+                           : near;
   }
   Box2 region_box;
   for (const Polygon& r : mesh.options.region) region_box.extend(bounds(r));
