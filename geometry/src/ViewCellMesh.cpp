@@ -95,7 +95,117 @@ class CellCriteria : public SizeCriteria {
  private:
   double min_edge_;
 };
-using Mesher = CGAL::Delaunay_mesher_2<Cdtp, CellCriteria>;
+
+// Gabriel conformity with a floor, the edge-level twin of CellCriteria. CGAL's mesher splits every
+// constrained edge whose diametral circle holds a vertex. Along an alley 1 m wide between two
+// staircase outlines, that splits every wall into pieces as short as the alley is wide and fans
+// each of them out into slivers: Delft's 59,095 m² of free space got 1,640 cells, 1.61 times the
+// density of a generated city. A wall piece already shorter than the floor (the same floor as
+// CellCriteria's) is therefore taken as it is; a circumcentre that would encroach upon it, or
+// that lies outside free space, is not inserted (the face stays as it is, like a face under the
+// shape floor). Longer walls are split as before, so the size bound holds and the cells of open
+// space are as they were (the generated 1 km² city, seed 7: 12,367 -> 12,158 cells).
+//
+// CGAL default-constructs this predicate inside its edge level, so the floor is handed over in
+// a thread-local set around one refinement (ScopedWallFloor).
+thread_local double squared_wall_floor = 0;
+
+struct ScopedWallFloor {
+  explicit ScopedWallFloor(double floor) { squared_wall_floor = floor * floor; }
+  ~ScopedWallFloor() { squared_wall_floor = 0; }
+  ScopedWallFloor(const ScopedWallFloor&) = delete;
+  ScopedWallFloor& operator=(const ScopedWallFloor&) = delete;
+};
+
+bool below_wall_floor(const Point& a, const Point& b) {
+  return CGAL::squared_distance(a, b) < squared_wall_floor;
+}
+
+// True when p lies outside the closed diametral circle of ab (CGAL's Gabriel test).
+bool outside_diametral_circle(const Point& a, const Point& b, const Point& p) {
+  return CGAL::angle(a, p, b) == CGAL::ACUTE;
+}
+
+struct ConformingAboveFloor {
+  using Tr = Cdtp;
+  bool operator()(const Tr& tr, const Tr::Face_handle& fh, int i) const {
+    const Tr::Vertex_handle va = fh->vertex(Tr::cw(i));
+    const Tr::Vertex_handle vb = fh->vertex(Tr::ccw(i));
+    if (below_wall_floor(va->point(), vb->point())) return true;
+    const Tr::Vertex_handle vi = fh->vertex(i);
+    const Tr::Vertex_handle mvi = tr.tds().mirror_vertex(fh, i);
+    return (tr.is_infinite(vi) ||
+            outside_diametral_circle(va->point(), vb->point(), vi->point())) &&
+           (tr.is_infinite(mvi) ||
+            outside_diametral_circle(va->point(), vb->point(), mvi->point()));
+  }
+  bool operator()(const Tr& tr, const Tr::Vertex_handle& va, const Tr::Vertex_handle& vb) const {
+    Tr::Face_handle fh;
+    int i = 0;
+    [[maybe_unused]] const bool found = tr.is_edge(va, vb, fh, i);
+    CGAL_assertion(found);
+    return (*this)(tr, fh, i);
+  }
+  bool operator()(const Tr& tr, const Tr::Face_handle& fh, int i, const Point& p) const {
+    return (*this)(tr, fh->vertex(Tr::cw(i)), fh->vertex(Tr::ccw(i)), p);
+  }
+  bool operator()(const Tr&, const Tr::Vertex_handle& va, const Tr::Vertex_handle& vb,
+                  const Point& p) const {
+    return below_wall_floor(va->point(), vb->point()) ||
+           outside_diametral_circle(va->point(), vb->point(), p);
+  }
+};
+
+using EdgesBase = CGAL::Mesh_2::Refine_edges_base_with_clusters<Cdtp, ConformingAboveFloor>;
+
+// Drops a circumcentre that leaves free space or encroaches upon a wall piece below the floor,
+// instead of splitting that piece; everything else as in CGAL.
+class EdgesAboveFloor : public EdgesBase {
+ public:
+  using EdgesBase::EdgesBase;
+  using Zone = CGAL::Triangulation_mesher_level_traits_2<Cdtp>::Zone;
+  CGAL::Mesher_level_conflict_status test_point_conflict_from_superior_impl(const K::Point_2& p,
+                                                                            Zone& z) {
+    if (!z.fh->is_in_domain()) return CGAL::CONFLICT_AND_ELEMENT_SHOULD_BE_DROPPED;
+    for (const auto& [fh, i] : z.boundary_edges) {
+      if (!fh->is_constrained(i)) continue;
+      const K::Point_2& a = fh->vertex(Cdtp::cw(i))->point();
+      const K::Point_2& b = fh->vertex(Cdtp::ccw(i))->point();
+      if (below_wall_floor(a, b) && !outside_diametral_circle(a, b, p))
+        return CGAL::CONFLICT_AND_ELEMENT_SHOULD_BE_DROPPED;
+    }
+    return EdgesBase::test_point_conflict_from_superior_impl(p, z);
+  }
+};
+
+// Delaunay_mesher_2 with the edge level above (its constructor and init, less the seeds).
+class Mesher {
+ public:
+  Mesher(Cdtp& cdt, const CellCriteria& criteria)
+      : criteria_(criteria),
+        clusters_(cdt),
+        edges_(cdt, clusters_, null_level_),
+        faces_(cdt, criteria_, edges_),
+        visitor_(faces_, edges_, null_visitor_) {}
+  void refine_mesh() {
+    clusters_.create_clusters();
+    edges_.scan_triangulation();
+    faces_.scan_triangulation();
+    faces_.refine(visitor_);
+  }
+
+ private:
+  using Edges =
+      CGAL::Mesh_2::Refine_edges_with_clusters<Cdtp, ConformingAboveFloor, EdgesAboveFloor>;
+  using Faces = CGAL::Mesh_2::Refine_faces<Cdtp, CellCriteria, Edges>;
+  CellCriteria criteria_;
+  CGAL::Null_mesher_level null_level_;
+  CGAL::Null_mesh_visitor null_visitor_;
+  CGAL::Mesh_2::Clusters<Cdtp> clusters_;
+  Edges edges_;
+  Faces faces_;
+  CGAL::Mesh_2::Refine_edges_visitor_from_faces<Faces> visitor_;
+};
 using Vertex_handle = Cdtp::Vertex_handle;
 using Face_handle = Cdtp::Face_handle;
 
@@ -330,9 +440,11 @@ FreeSpaceTriangulation triangulate_free_space(const std::vector<Polygon>& region
 
   t0 = std::chrono::steady_clock::now();
   for (Face_handle f : cdt.all_face_handles()) f->set_in_domain(is_free(cdt, f));
-  Mesher mesher(cdt, CellCriteria(shape_bound, max_edge, min_edge));
-  mesher.init(/*domain_specified=*/true);
-  mesher.refine_mesh();
+  {
+    const ScopedWallFloor floor(min_edge);
+    Mesher mesher(cdt, CellCriteria(shape_bound, max_edge, min_edge));
+    mesher.refine_mesh();
+  }
   // The mesher split constrained edges; the hierarchy followed, so classify again from scratch
   // rather than trusting the mesher's own marks.
   classify(cdt, rings);
