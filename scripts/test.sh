@@ -25,7 +25,7 @@ if [ "${URBANPVS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # against the hierarchical test, real cities meshed and fused). Under the sanitizers they
   # would take most of CI's time and reach no code that the smaller tests of the same stages
   # miss; the urbanpvs-preprocess end-to-end tests still bake and validate under them.
-  release_only='^(ViewCells\.(Helsinki|GeneratedOneKm2TwoSeeds)'
+  release_only='^(ViewCells\.(Helsinki|TuDelft3dBagTile|GeneratedOneKm2TwoSeeds)'
   release_only+='|Blocks\.(BundledSampleCity|DelftCity|HelsinkiCity)'
   release_only+='|Hierarchical\..*BruteForce.*|geometry_cli_(delft|helsinki_default_height))$'
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build"
