@@ -1,7 +1,8 @@
 // urbanpvs-citygen: writes a procedural sample city as CityJSON (and optionally GeoJSON).
 //
-// Output goes to "<path>.tmp" first and is renamed over <path> only when complete, so an
-// interrupted run never leaves a truncated city where a previous good one was.
+// Output goes to a temporary file first and is renamed over <path> only when complete
+// (runtime::write_file_atomic), so an interrupted run never leaves a truncated city where a
+// previous good one was. Exit codes: the tools' one table (urbanpvs/runtime/exit_codes.hpp).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -14,37 +15,14 @@
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
 #include "urbanpvs/cities/geojson_writer.hpp"
+#include "urbanpvs/runtime/exit_codes.hpp"
+#include "urbanpvs/runtime/file_io.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using urbanpvs::cities::CityParams;
 using urbanpvs::cities::RoofMode;
-
-// Writes `text` to `path` via a temporary file in the same directory (so the rename is atomic on
-// POSIX file systems). Throws std::runtime_error with the reason on failure.
-void writeFileAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = fs::path(path).concat(".tmp");
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot open '" + tmp.string() + "' for writing");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error("cannot write '" + tmp.string() + "' (disk full?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename '" + tmp.string() + "' to '" + path.string() +
-                             "': " + ec.message());
-  }
-}
 
 }  // namespace
 
@@ -86,16 +64,20 @@ int main(int argc, char** argv) {
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "Print nothing on success");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? urbanpvs::exit_code::kOk : urbanpvs::exit_code::kUsage;
+  }
 
   try {
     if (side_m > 0.0) params.size_km2 = (side_m / 1000.0) * (side_m / 1000.0);
     params.roofs = roofs == "lod2" ? RoofMode::Lod2 : RoofMode::Flat;
     const auto start = std::chrono::steady_clock::now();
     const urbanpvs::cities::City city = urbanpvs::cities::generateCity(params);
-    writeFileAtomically(cityjson_path, urbanpvs::cities::cityJsonText(city));
+    urbanpvs::runtime::write_file_atomic(cityjson_path, urbanpvs::cities::cityJsonText(city));
     if (!geojson_path.empty())
-      writeFileAtomically(geojson_path, urbanpvs::cities::geoJsonText(city));
+      urbanpvs::runtime::write_file_atomic(geojson_path, urbanpvs::cities::geoJsonText(city));
     const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
     if (!quiet) {
       std::printf("%zu blocks, %zu buildings, %.0f m x %.0f m, written in %.2f s\n",
@@ -103,7 +85,7 @@ int main(int argc, char** argv) {
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "urbanpvs-citygen: error: %s\n", e.what());
-    return 1;
+    return urbanpvs::exit_code::kOutput;
   }
-  return 0;
+  return urbanpvs::exit_code::kOk;
 }

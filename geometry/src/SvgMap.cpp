@@ -2,10 +2,7 @@
 #include "urbanpvs/geometry/SvgMap.hpp"
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
-#include <system_error>
 
 namespace urbanpvs::geometry {
 
@@ -51,27 +48,6 @@ std::string SvgMap::str() const {
                 "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
                 (view_.max.x - view_.min.x) * scale_, (view_.max.y - view_.min.y) * scale_);
   return head + body_.str() + "</svg>\n";
-}
-
-void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot create " + tmp);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ignore;
-      std::filesystem::remove(tmp, ignore);
-      throw std::runtime_error(path + ": write failed");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw std::runtime_error(path + ": cannot rename temporary file: " + ec.message());
-  }
 }
 
 }  // namespace urbanpvs::geometry

@@ -13,14 +13,16 @@
 #include "urbanpvs/geometry/SvgMap.hpp"
 #include "urbanpvs/geometry/ViewCellRegion.hpp"
 #include "urbanpvs/geometry/ViewCells.hpp"
+#include "urbanpvs/runtime/exit_codes.hpp"
+#include "urbanpvs/runtime/file_io.hpp"
 
 namespace {
 
 using namespace urbanpvs::geometry;
 
-constexpr int kExitUsage = 2;
-constexpr int kExitProcessing = 4;
-constexpr int kExitOutput = 5;
+constexpr int kExitUsage = urbanpvs::exit_code::kUsage;
+constexpr int kExitProcessing = urbanpvs::exit_code::kProcessing;
+constexpr int kExitOutput = urbanpvs::exit_code::kOutput;
 
 // "MIN:MAX" in metres.
 bool parse_band(const std::string& s, double& lo, double& hi) {
@@ -158,7 +160,7 @@ int main(int argc, char** argv) {
   }
   if (!svg.empty()) {
     try {
-      write_file_atomically(svg, svg_of(city, mesh));
+      urbanpvs::runtime::write_file_atomic(svg, svg_of(city, mesh));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());
       return kExitOutput;

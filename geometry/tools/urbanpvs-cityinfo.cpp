@@ -12,13 +12,15 @@
 #include "urbanpvs/geometry/LocalFrameMapping.hpp"
 #include "urbanpvs/geometry/Occluder.hpp"
 #include "urbanpvs/geometry/SvgMap.hpp"
+#include "urbanpvs/runtime/exit_codes.hpp"
+#include "urbanpvs/runtime/file_io.hpp"
 
 namespace {
 
 using namespace urbanpvs::geometry;
 
-constexpr int kExitUsage = 2;
-constexpr int kExitOutput = 5;
+constexpr int kExitUsage = urbanpvs::exit_code::kUsage;
+constexpr int kExitOutput = urbanpvs::exit_code::kOutput;
 
 void print_summary(const City& city, const std::vector<Block>& blocks,
                    const std::vector<Occluder>& occluders, double epsilon) {
@@ -154,7 +156,7 @@ int main(int argc, char** argv) {
     print_summary(city, blocks, occluders, epsilon);
     if (!svg.empty()) {
       try {
-        write_file_atomically(svg, svg_of(city, blocks, occluders));
+        urbanpvs::runtime::write_file_atomic(svg, svg_of(city, blocks, occluders));
       } catch (const std::exception& e) {
         std::fprintf(stderr, "urbanpvs-cityinfo: %s\n", e.what());
         return kExitOutput;

@@ -220,7 +220,7 @@ void Run::write_output(const BakeScene& scene) {
   report_.output_bytes = bytes.size();
   try {
     runtime::write_file_atomic(request_.output, bytes);
-  } catch (const runtime::PvsWriteError& e) {
+  } catch (const runtime::FileWriteError& e) {
     throw Failure{kExitOutput, e.what()};
   }
 }
@@ -265,8 +265,8 @@ int Run::execute() {
   if (!request_.report_file.empty()) {
     try {
       const std::string text = report_json(report_);
-      runtime::write_file_atomic(request_.report_file, text.data(), text.size());
-    } catch (const runtime::PvsWriteError& e) {
+      runtime::write_file_atomic(request_.report_file, text);
+    } catch (const runtime::FileWriteError& e) {
       // A run that fails leaves no output; the journal stays, so --resume only rewrites.
       std::error_code ignored;
       fs::remove(request_.output, ignored);

@@ -52,7 +52,7 @@ void write_file_atomic(const std::string& path, const void* data, std::size_t si
   auto fail = [&](const std::string& reason) {
     std::error_code ignored;
     fs::remove(temp, ignored);
-    throw PvsWriteError(path + ": " + reason);
+    throw FileWriteError(path + ": " + reason);
   };
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);

@@ -10,21 +10,22 @@
 #include <string>
 #include <vector>
 
+#include "urbanpvs/runtime/exit_codes.hpp"
 #include "urbanpvs/runtime/pvs_file.hpp"
 
 namespace urbanpvs::inspect {
 
-/// Exit codes (documented in --help; distinct per kind of failure).
+/// Exit codes: the tools' one table (urbanpvs/runtime/exit_codes.hpp), by their inspect names.
 enum ExitCode : int {
-  kExitOk = 0,
-  kExitInternal = 1,     ///< out of memory or another unexpected failure
-  kExitUsage = 2,        ///< bad or missing command-line arguments
-  kExitUnreadable = 3,   ///< the input file cannot be read
-  kExitNotPvs = 4,       ///< not a .pvs file (bad magic)
-  kExitUnsupported = 5,  ///< unsupported major version or required feature
-  kExitCorrupt = 6,      ///< truncated, trailing bytes, checksum mismatch, malformed content
-  kExitBadQuery = 7,     ///< bad argument value: cell out of range, bad point, --geo misuse
-  kExitWriteFailed = 8,  ///< the output file cannot be written
+  kExitOk = exit_code::kOk,
+  kExitInternal = exit_code::kProcessing,         ///< out of memory or another unexpected failure
+  kExitUsage = exit_code::kUsage,                 ///< bad or missing command-line arguments
+  kExitUnreadable = exit_code::kFileUnreadable,   ///< the input file cannot be read
+  kExitNotPvs = exit_code::kNotPvs,               ///< not a .pvs file (bad magic)
+  kExitUnsupported = exit_code::kPvsUnsupported,  ///< unsupported major version or feature
+  kExitCorrupt = exit_code::kPvsCorrupt,  ///< truncated, trailing bytes, checksum, malformed
+  kExitBadQuery = exit_code::kBadQuery,   ///< bad argument value: cell out of range, bad point
+  kExitWriteFailed = exit_code::kOutput,  ///< the output file cannot be written
 };
 
 struct Options {

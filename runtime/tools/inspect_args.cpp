@@ -35,16 +35,16 @@ std::string usage() {
 Coordinates are reported in the input CRS (local + origin) for projected inputs, and in the
 stored local east-north-up frame for geographic ones. Output files are written atomically.
 
-exit codes:
+exit codes (the same for every urbanpvs tool; README, "Exit codes"):
   0  success
-  1  internal error (out of memory)
   2  usage: bad or missing arguments
-  3  the input file cannot be read
-  4  not a .pvs file (bad magic)
-  5  unsupported format version or required feature (file newer than this tool)
-  6  corrupt file: truncated, trailing bytes, checksum mismatch, malformed section
-  7  bad value: cell out of range, unparsable query point, --geo on a non-geographic file
-  8  the output file cannot be written
+  3  bad value: cell out of range, unparsable query point, --geo on a non-geographic file
+  4  internal error (out of memory)
+  5  the output file cannot be written
+  20 the input file cannot be read
+  21 not a .pvs file (bad magic)
+  22 unsupported format version or required feature (file newer than this tool)
+  23 corrupt file: truncated, trailing bytes, checksum mismatch, malformed section
 )";
 }
 

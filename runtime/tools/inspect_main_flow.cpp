@@ -15,20 +15,7 @@ using runtime::LoadError;
 using runtime::Status;
 
 int exit_code_for(Status status) {
-  switch (status) {
-    case Status::kIoError:
-    case Status::kInvalidArgument:
-      return kExitUnreadable;
-    case Status::kBadMagic:
-      return kExitNotPvs;
-    case Status::kUnsupportedVersion:
-    case Status::kUnsupportedFeature:
-      return kExitUnsupported;
-    case Status::kOutOfMemory:
-      return kExitInternal;
-    default:
-      return kExitCorrupt;
-  }
+  return exit_code::for_load(status);
 }
 
 /// "city.pvs: checksum mismatch in section 'pvs'" and the like.
@@ -80,8 +67,8 @@ int run_command(const Options& o, const runtime::PvsFile& file, std::istream& in
   } else if (!o.svg.empty()) {
     try {
       const std::string svg = render_svg(file, o.cell);
-      runtime::write_file_atomic(o.svg, svg.data(), svg.size());
-    } catch (const runtime::PvsWriteError& e) {
+      runtime::write_file_atomic(o.svg, svg);
+    } catch (const runtime::FileWriteError& e) {
       err << "urbanpvs-inspect: " << e.what() << "\n";
       return kExitWriteFailed;
     }

@@ -95,8 +95,8 @@ TEST(Writer, WritesAtomicallyAndReportsThePath) {
   const std::string missing = (dir / "no" / "such" / "dir" / "x.pvs").string();
   try {
     rt::write_file_atomic(missing, bytes);
-    FAIL() << "expected PvsWriteError";
-  } catch (const rt::PvsWriteError& e) {
+    FAIL() << "expected FileWriteError";
+  } catch (const rt::FileWriteError& e) {
     EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
   }
 }

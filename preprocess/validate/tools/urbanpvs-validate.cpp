@@ -15,6 +15,7 @@
 
 #include "urbanpvs/geometry/CityReader.hpp"
 #include "urbanpvs/geometry/InputError.hpp"
+#include "urbanpvs/runtime/exit_codes.hpp"
 #include "urbanpvs/validate/Validator.hpp"
 
 int main(int argc, char** argv) {
@@ -55,7 +56,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return app.exit(e) == 0 ? 0 : exit_code::kUsage;
   }
   try {
     options.validate();
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--coordinates must be auto, geographic or projected");
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
-    return 2;
+    return exit_code::kUsage;
   }
   const std::string pvs_path = inputs.back();
   inputs.pop_back();
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
     if (runtime::PvsFile::open_file(pvs_path.c_str(), file, {}, &error) != runtime::Status::kOk) {
       std::fprintf(stderr, "urbanpvs-validate: %s: cannot load: %s\n", pvs_path.c_str(),
                    error.detail);
-      return 4;
+      return exit_code::for_load(error.status);
     }
     const validate::ValidationReport r = validate::validate(city, file, options);
     std::printf("viewpoints: %zu, rays: %zu, misses: %zu\n", r.viewpoints, r.rays, r.misses.size());
@@ -97,12 +98,12 @@ int main(int argc, char** argv) {
                   m.cell, m.viewpoint.x, m.viewpoint.y, m.viewpoint.z, m.object_id.c_str(),
                   m.target.x, m.target.y, m.target.z);
     }
-    return r.misses.empty() ? 0 : 1;
+    return r.misses.empty() ? exit_code::kOk : exit_code::kMisses;
   } catch (const geometry::InputError& e) {
     std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
     return geometry::exit_code(e.problem());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "urbanpvs-validate: %s: %s\n", pvs_path.c_str(), e.what());
-    return 4;
+    return exit_code::kProcessing;
   }
 }

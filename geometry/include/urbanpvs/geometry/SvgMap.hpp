@@ -30,8 +30,4 @@ class SvgMap {
   std::ostringstream body_;
 };
 
-/// Writes `text` to `path` through a temporary file renamed into place, so a reader never sees
-/// a half-written file. Throws std::runtime_error naming the path on failure.
-void write_file_atomically(const std::string& path, const std::string& text);
-
 }  // namespace urbanpvs::geometry

@@ -9,15 +9,19 @@
 #include <vector>
 
 #include "urbanpvs/geometry/CityReader.hpp"
+#include "urbanpvs/geometry/InputError.hpp"
 #include "urbanpvs/preprocess/BakeScene.hpp"
+#include "urbanpvs/runtime/exit_codes.hpp"
 
 namespace urbanpvs::preprocess {
 
-/// Exit codes besides 0 (README, "Exit codes"); input errors exit with geometry::exit_code()
-/// (10–17).
-inline constexpr int kExitUsage = 2;       ///< bad command line or config; journal refused
-inline constexpr int kExitProcessing = 4;  ///< the bake itself failed
-inline constexpr int kExitOutput = 5;      ///< the output, journal or report cannot be written
+/// The exit codes urbanpvs-preprocess uses besides 0, from the tools' one table
+/// (urbanpvs/runtime/exit_codes.hpp); input errors exit with geometry::exit_code() (10–18).
+inline constexpr int kExitUsage = exit_code::kUsage;  ///< bad command line or config; journal
+inline constexpr int kExitProcessing = exit_code::kProcessing;  ///< the bake itself failed
+inline constexpr int kExitOutput = exit_code::kOutput;  ///< output, journal or report unwritable
+static_assert(int(geometry::InputProblem::Unreadable) == exit_code::kCityInputFirst &&
+              int(geometry::InputProblem::Implausible) == exit_code::kCityInputLast);
 
 /// Everything one run needs.
 struct PreprocessRequest {

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "urbanpvs/runtime/file_io.hpp"
 #include "urbanpvs/runtime/types.hpp"
 
 namespace urbanpvs::runtime {
@@ -88,14 +89,5 @@ std::string validate(const PvsBake& bake);
 /// bytes (no pointers, hashes of addresses, clocks or unordered containers are involved).
 /// Throws PvsWriteError when validate() fails or a size limit of the format is exceeded.
 std::vector<std::byte> encode(const PvsBake& bake, const EncodeOptions& options = {});
-
-/// Writes `bytes` to `path` atomically: to a temporary file in the same directory, then renamed
-/// over `path`, so readers see the old or the new file, never a partial one. Throws
-/// PvsWriteError("<path>: <reason>") on failure (and removes the temporary file). Uses only the
-/// standard library, so the data is not fsync'ed.
-void write_file_atomic(const std::string& path, const void* data, std::size_t size);
-inline void write_file_atomic(const std::string& path, const std::vector<std::byte>& bytes) {
-  write_file_atomic(path, bytes.data(), bytes.size());
-}
 
 }  // namespace urbanpvs::runtime
