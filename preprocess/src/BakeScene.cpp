@@ -22,7 +22,6 @@ runtime::Metadata metadata_of(const geometry::City& city, const BakeOptions& o) 
   m.settings.max_cell_edge_m = o.cells.max_cell_edge;
   m.settings.eye_min_m = o.cells.eye_min;
   m.settings.eye_max_m = o.cells.eye_max;
-  m.properties = bake_properties(o);
   return m;
 }
 
@@ -139,13 +138,24 @@ runtime::CellRecord BakeScene::cell_record(std::uint32_t cell,
   return rec;
 }
 
-runtime::PvsBake BakeScene::file_header() const {
+runtime::PvsBake BakeScene::pvs_file(std::vector<std::vector<std::uint32_t>> pvs,
+                                     std::vector<std::pair<std::string, std::string>> properties,
+                                     std::uint64_t input_hash) const {
+  if (pvs.size() != cell_count())
+    throw std::invalid_argument("BakeScene::pvs_file: " + std::to_string(pvs.size()) +
+                                " PVSs for " + std::to_string(cell_count()) + " cells");
   runtime::PvsBake bake;
   bake.meta = metadata_of(*city_, options_);
+  bake.meta.settings.input_hash = input_hash;
+  bake.meta.properties = std::move(properties);
+  bake.objects.reserve(city_->objects.size());
   for (const geometry::CityObject& o : city_->objects)
     bake.objects.push_back({o.source_id,
                             {o.bbox.xy.min.x, o.bbox.xy.min.y, o.bbox.zmin, o.bbox.xy.max.x,
                              o.bbox.xy.max.y, o.bbox.zmax}});
+  bake.cells.reserve(cell_count());
+  for (std::uint32_t c = 0; c < cell_count(); ++c)
+    bake.cells.push_back(cell_record(c, std::move(pvs[c])));
   return bake;
 }
 

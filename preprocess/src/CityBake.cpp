@@ -7,21 +7,20 @@ runtime::PvsBake bake_city(const geometry::City& city, const BakeOptions& option
                            const std::function<void(std::size_t, std::size_t)>& progress) {
   const BakeScene scene(city, options);
   CellVisibility visibility(scene);
-  runtime::PvsBake bake = scene.file_header();
+  std::vector<std::vector<std::uint32_t>> pvs(scene.cell_count());
   BakeStats local;
   BakeStats& s = stats ? *stats : local;
   s.blocks = scene.blocks().size();
   s.occluders = scene.occluders().size();
   s.cells = scene.cell_count();
   for (std::uint32_t i = 0; i < scene.cell_count(); ++i) {
-    std::vector<std::uint32_t> pvs = visibility.pvs(i, &s.counters);
-    s.pvs_entries += pvs.size();
-    bake.cells.push_back(scene.cell_record(i, std::move(pvs)));
+    pvs[i] = visibility.pvs(i, &s.counters);
+    s.pvs_entries += pvs[i].size();
     if (progress) progress(i + 1, scene.cell_count());
   }
   for (const geometry::ViewCellMesh& mesh = scene.mesh(); const geometry::CellEdge& e : mesh.edges)
     s.samples += e.sample_count;
-  return bake;
+  return scene.pvs_file(std::move(pvs), bake_properties(options));
 }
 
 }  // namespace urbanpvs::preprocess

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <system_error>
+#include <utility>
 
 #include "urbanpvs/geometry/InputError.hpp"
 #include "urbanpvs/geometry/ViewCellRegion.hpp"
@@ -193,24 +194,21 @@ void Run::compute_cells(const BakeScene& scene) {
 }
 
 void Run::write_output(const BakeScene& scene) {
-  runtime::PvsBake bake = scene.file_header();
-  bake.meta.settings.input_hash = input_hash_;
-  // settings_ starts with the scene's own bake_properties (result_settings): it replaces the
-  // header's properties whole, adding the reading options, the region and the inputs.
-  bake.meta.properties = settings_;
+  // settings_ (result_settings) is the tool's version, then bake_properties() as bake_city
+  // stores them, then the reading options and the region; the inputs follow.
+  std::vector<std::pair<std::string, std::string>> properties = settings_;
   std::string names;
   for (const std::string& path : request_.inputs)
     names += (names.empty() ? "" : "; ") + fs::path(path).filename().string();
-  bake.meta.properties.emplace_back("inputs", names);
-  bake.meta.properties.emplace_back("input_hash", hex64(input_hash_));
-  bake.cells.reserve(scene.cell_count());
+  properties.emplace_back("inputs", names);
+  properties.emplace_back("input_hash", hex64(input_hash_));
   for (std::uint32_t c = 0; c < scene.cell_count(); ++c) {
     report_.pvs_entries += pvs_[c].size();
     report_.pvs_max = std::max<std::uint64_t>(report_.pvs_max, pvs_[c].size());
     report_.counters += counters_[c];
-    bake.cells.push_back(scene.cell_record(c, std::move(pvs_[c])));
   }
-  pvs_ = {};
+  runtime::PvsBake bake =
+      scene.pvs_file(std::exchange(pvs_, {}), std::move(properties), input_hash_);
   std::vector<std::byte> bytes;
   try {
     bytes = runtime::encode(bake);

@@ -47,7 +47,7 @@ struct BakeOptions {
 
 /// Every bake option that changes the result, as (key, value) text in a fixed order, numbers as
 /// the shortest text that reads back to the same double. Stored in the output file's properties
-/// (BakeScene::file_header) and part of urbanpvs-preprocess's journal fingerprint.
+/// (BakeScene::pvs_file) and part of urbanpvs-preprocess's journal fingerprint.
 std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& options);
 
 class BakeScene {
@@ -71,12 +71,17 @@ class BakeScene {
 
   /// The samples of a cell: those of its three top edges (thesis 5.3).
   std::vector<Vec3> samples(std::uint32_t cell) const;
-  /// The file record of a cell with its PVS.
-  runtime::CellRecord cell_record(std::uint32_t cell, std::vector<std::uint32_t> pvs) const;
-  /// Metadata and objects of the output file; cells are added by the caller in cell order.
-  runtime::PvsBake file_header() const;
+  /// The one assembly of the output file, for bake_city and urbanpvs-preprocess alike: frame
+  /// and settings of this scene, the objects in city order, cell i with `pvs[i]` (one per cell),
+  /// and `properties` stored as given: bake_properties() of the options, then whatever the
+  /// caller adds (urbanpvs-preprocess: its version, reading options, region and inputs).
+  runtime::PvsBake pvs_file(std::vector<std::vector<std::uint32_t>> pvs,
+                            std::vector<std::pair<std::string, std::string>> properties,
+                            std::uint64_t input_hash = 0) const;
 
  private:
+  runtime::CellRecord cell_record(std::uint32_t cell, std::vector<std::uint32_t> pvs) const;
+
   const geometry::City* city_;
   BakeOptions options_;
   std::vector<geometry::Block> blocks_;
