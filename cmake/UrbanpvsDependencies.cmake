@@ -8,11 +8,3 @@ pkg_check_modules(GeographicLib REQUIRED IMPORTED_TARGET geographiclib)  # WGS84
 pkg_check_modules(OSMesa REQUIRED IMPORTED_TARGET osmesa)               # off-screen cull maps
 find_package(glm REQUIRED)
 
-if(URBANPVS_WITH_TETGEN)
-  find_path(TETGEN_INCLUDE_DIR tetgen.h REQUIRED)
-  find_library(TETGEN_LIBRARY tet REQUIRED)
-  add_library(urbanpvs_tetgen INTERFACE)
-  target_include_directories(urbanpvs_tetgen SYSTEM INTERFACE ${TETGEN_INCLUDE_DIR})
-  target_link_libraries(urbanpvs_tetgen INTERFACE ${TETGEN_LIBRARY})
-  target_compile_definitions(urbanpvs_tetgen INTERFACE TETLIBRARY)
-endif()

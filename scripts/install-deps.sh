@@ -16,8 +16,6 @@ packages=(
   libglm-dev
   # off-screen OpenGL for cull maps (llvmpipe)
   libosmesa6-dev
-  # 3D occluder shrinking (optional, AGPL; only used with URBANPVS_WITH_TETGEN=ON)
-  libtet1.5-dev tetgen
   # JSON input, command lines, tests, benchmarks
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
 )

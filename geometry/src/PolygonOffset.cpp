@@ -60,7 +60,7 @@ std::vector<Polygon> shrink_polygon(const Polygon& poly, double d) {
   if (!(d > 0)) return {poly};
   std::vector<Polygon> pieces;
   try {
-    // Empty when the whole polygon vanishes (NOTES.md: CGAL returns nothing then).
+    // Empty when the whole polygon vanishes (CGAL's offset returns nothing then).
     pieces = from_cgal(
         CGAL::create_interior_skeleton_and_offset_polygons_with_holes_2(d, to_cgal(poly)));
   } catch (const std::exception&) {

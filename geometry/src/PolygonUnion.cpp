@@ -62,7 +62,7 @@ std::vector<Loop> split_at_repeats(Loop ring) {
 }
 
 // Drops vertices on the straight line through their neighbours, decided exactly: the join keeps
-// the endpoints of every shared wall (NOTES.md), which would otherwise become tiny occluder edges.
+// the endpoints of every shared wall, which would otherwise become tiny occluder edges.
 // Points where the polygon touches itself are kept.
 Loop simplified(Loop pts, const Visits& visits) {
   bool changed = true;

@@ -94,7 +94,7 @@ OsMesaCullMapRenderer::OsMesaCullMapRenderer() : gl_(std::make_unique<Context>()
   if (!gl_->context) throw std::runtime_error("OSMesa cull maps: no OpenGL 4.5 core context");
   if (!OSMesaMakeCurrent(gl_->context, gl_->window.data(), GL_UNSIGNED_BYTE, 4, 4))
     throw std::runtime_error("OSMesa cull maps: cannot make the context current");
-  // Window depth must equal the vertex z we compute (NOTES.md): glClipControl is not exported by
+  // Window depth must equal the vertex z we compute: glClipControl is not exported by
   // libOSMesa, so it is fetched at run time.
   using ClipControl = void (*)(GLenum, GLenum);
   auto clip_control = reinterpret_cast<ClipControl>(OSMesaGetProcAddress("glClipControl"));

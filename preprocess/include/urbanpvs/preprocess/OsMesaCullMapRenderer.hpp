@@ -36,8 +36,8 @@ class OsMesaCullMapRenderer {
     return cell_cull_map(grid, samples, pointers_to(occluders), zlo, zhi, stats);
   }
 
-  /// Depth read back from llvmpipe was measured within ~2e-6 of the normalized range
-  /// (NOTES.md); four times that is subtracted.
+  /// Depth read back from llvmpipe was measured within ~2e-6 of the normalized range; four
+  /// times that is subtracted.
   static constexpr double kDepthMargin = 8e-6;
 
  private:
