@@ -6,11 +6,11 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/Occluder.hpp"
-#include "urbanpvs/geometry/ViewCells.hpp"
-#include "urbanpvs/preprocess/CellCullMap.hpp"
-#include "urbanpvs/preprocess/OsMesaCullMapRenderer.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/occluders/Occluder.hpp"
+#include "urbanpvs/geometry/cells/ViewCells.hpp"
+#include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
+#include "urbanpvs/preprocess/visibility/OsMesaCullMapRenderer.hpp"
 
 namespace {
 

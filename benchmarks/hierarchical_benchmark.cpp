@@ -16,9 +16,9 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/preprocess/BakeScene.hpp"
-#include "urbanpvs/preprocess/CellVisibility.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/preprocess/bake/BakeScene.hpp"
+#include "urbanpvs/preprocess/visibility/CellVisibility.hpp"
 
 namespace {
 

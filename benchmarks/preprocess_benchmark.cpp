@@ -23,7 +23,7 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/preprocess/PreprocessCommand.hpp"
+#include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 
 namespace {
 

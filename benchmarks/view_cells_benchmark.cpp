@@ -10,9 +10,9 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/geometry/CellLocator.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/ViewCells.hpp"
+#include "urbanpvs/geometry/cells/CellLocator.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/cells/ViewCells.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // urbanpvs-preprocess CITY... -o OUT.pvs: the batch bake of a whole city (see README, "Tools").
-#include "urbanpvs/preprocess/PreprocessCommand.hpp"
+#include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 
 int main(int argc, char** argv) {
   using namespace urbanpvs::preprocess;

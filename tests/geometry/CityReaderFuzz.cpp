@@ -23,9 +23,9 @@
 #include <string>
 #include <string_view>
 
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/InputError.hpp"
-#include "urbanpvs/geometry/RingCleanup.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
 
 namespace {
 

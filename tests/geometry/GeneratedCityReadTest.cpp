@@ -9,7 +9,7 @@
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
 #include "urbanpvs/cities/geojson_writer.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/InputError.hpp"
-#include "urbanpvs/geometry/LocalFrameMapping.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <random>
 
-#include "urbanpvs/geometry/Polygon2.hpp"
+#include "urbanpvs/geometry/city/Polygon2.hpp"
 
 namespace urbanpvs::geometry::test {
 

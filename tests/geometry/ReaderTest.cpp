@@ -31,11 +31,11 @@
 #include <cstring>
 #endif
 
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/InputError.hpp"
-#include "urbanpvs/geometry/LocalFrameMapping.hpp"
-#include "urbanpvs/geometry/PolygonUnion.hpp"
-#include "urbanpvs/geometry/RingCleanup.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
+#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
 
 namespace {
 

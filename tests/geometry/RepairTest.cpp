@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <random>
 
-#include "../../geometry/src/RingRepair.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/InputError.hpp"
-#include "urbanpvs/geometry/RingCleanup.hpp"
+#include "../../geometry/city/RingRepair.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

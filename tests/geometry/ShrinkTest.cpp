@@ -7,9 +7,9 @@
 #include <filesystem>
 
 #include "PolygonTestShapes.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/PolygonOffset.hpp"
-#include "urbanpvs/geometry/RingCleanup.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

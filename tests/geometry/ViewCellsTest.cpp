@@ -15,15 +15,15 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/geometry/CellLocator.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/GroundHeight.hpp"
-#include "urbanpvs/geometry/InputError.hpp"
-#include "urbanpvs/geometry/PolygonOffset.hpp"
-#include "urbanpvs/geometry/PolygonUnion.hpp"
-#include "urbanpvs/geometry/ViewCellRegion.hpp"
-#include "urbanpvs/geometry/ViewCellSamples.hpp"
-#include "urbanpvs/geometry/ViewCells.hpp"
+#include "urbanpvs/geometry/cells/CellLocator.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/cells/GroundHeight.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
+#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
+#include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
+#include "urbanpvs/geometry/cells/ViewCellSamples.hpp"
+#include "urbanpvs/geometry/cells/ViewCells.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

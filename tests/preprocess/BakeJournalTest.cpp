@@ -9,9 +9,9 @@
 #include <fstream>
 #include <thread>
 
-#include "urbanpvs/preprocess/BakeFingerprint.hpp"
-#include "urbanpvs/preprocess/BakeJournal.hpp"
-#include "urbanpvs/preprocess/BakeProgress.hpp"
+#include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
+#include "urbanpvs/preprocess/bake/BakeJournal.hpp"
+#include "urbanpvs/preprocess/bake/BakeProgress.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "urbanpvs/preprocess/CellCullMap.hpp"
-#include "urbanpvs/preprocess/ObjectTest.hpp"
+#include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
+#include "urbanpvs/preprocess/visibility/ObjectTest.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

@@ -10,12 +10,12 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/preprocess/BakeScene.hpp"
-#include "urbanpvs/preprocess/CellCullMap.hpp"
-#include "urbanpvs/preprocess/CellVisibility.hpp"
-#include "urbanpvs/preprocess/CullMapHorizon.hpp"
-#include "urbanpvs/preprocess/SpatialIndex.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/preprocess/bake/BakeScene.hpp"
+#include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
+#include "urbanpvs/preprocess/visibility/CellVisibility.hpp"
+#include "urbanpvs/preprocess/visibility/CullMapHorizon.hpp"
+#include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

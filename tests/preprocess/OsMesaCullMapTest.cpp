@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "urbanpvs/preprocess/CellCullMap.hpp"
-#include "urbanpvs/preprocess/OsMesaCullMapRenderer.hpp"
+#include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
+#include "urbanpvs/preprocess/visibility/OsMesaCullMapRenderer.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

@@ -9,9 +9,9 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/preprocess/CityBake.hpp"
-#include "urbanpvs/preprocess/PreprocessCommand.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/preprocess/bake/CityBake.hpp"
+#include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 #include "urbanpvs/runtime/pvs_file.hpp"
 
 namespace fs = std::filesystem;

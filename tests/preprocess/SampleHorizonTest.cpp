@@ -10,9 +10,9 @@
 #include <numbers>
 #include <random>
 
-#include "urbanpvs/preprocess/SampleHorizon.hpp"
-#include "urbanpvs/preprocess/SightLine.hpp"
-#include "urbanpvs/preprocess/SpatialIndex.hpp"
+#include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
+#include "urbanpvs/preprocess/visibility/SightLine.hpp"
+#include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/preprocess/CityBake.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/preprocess/bake/CityBake.hpp"
 #include "urbanpvs/runtime/pvs_file.hpp"
 #include "urbanpvs/validate/Validator.hpp"
 

@@ -13,8 +13,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "urbanpvs/geometry/CityReader.hpp"
-#include "urbanpvs/geometry/InputError.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/runtime/exit_codes.hpp"
 #include "urbanpvs/validate/Validator.hpp"
 

@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "urbanpvs/geometry/CityModel.hpp"
+#include "urbanpvs/geometry/city/CityModel.hpp"
 
 namespace urbanpvs::validate {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "urbanpvs/geometry/CityModel.hpp"
+#include "urbanpvs/geometry/city/CityModel.hpp"
 #include "urbanpvs/runtime/pvs_file.hpp"
 #include "urbanpvs/validate/RayScene.hpp"
 

@@ -1,0 +1,324 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/geometry/city/CityReader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "BoxGrid.hpp"
+#include "CityReaders.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+
+namespace urbanpvs::geometry {
+namespace detail {
+
+std::string string_member(const Json& obj, const char* key) {
+  if (!obj.is_object()) return {};
+  const auto it = obj.find(key);
+  return it != obj.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+double json_number(const Json& v, const std::string& file, const std::string& feature,
+                   const char* what) {
+  if (!v.is_number())
+    throw InputError(InputProblem::BadStructure, file, feature,
+                     std::string(what) + " is not a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d))
+    throw InputError(InputProblem::InvalidGeometry, file, feature,
+                     std::string(what) + " is NaN or infinite");
+  return d;
+}
+
+std::string normalise_crs(const std::string& name, const std::string& file) {
+  auto code_after = [&](const std::string& marker) -> std::string {
+    const auto pos = name.find(marker);
+    if (pos == std::string::npos) return {};
+    std::string rest = name.substr(pos + marker.size());
+    // "EPSG/0/7415", "EPSG::7415", "EPSG:6.6:4326", "EPSG:7415": the code is the last field.
+    const auto cut = rest.find_last_of("/:");
+    std::string code = cut == std::string::npos ? rest : rest.substr(cut + 1);
+    if (code.empty() || code.find_first_not_of("0123456789") != std::string::npos) return {};
+    return code;
+  };
+  if (name.find("CRS84") != std::string::npos) return "OGC:CRS84";
+  if (std::string code = code_after("EPSG"); !code.empty()) return "EPSG:" + code;
+  throw InputError(InputProblem::UnknownCrs, file, "", "cannot interpret \"" + name + "\"");
+}
+
+CityObject non_occluding(CityObject o, const std::string& why, ReadReport& report) {
+  o.occludes = false;
+  o.occluders.clear();
+  // A footprint that survived (only the height is unknown) still says where the building is;
+  // else its box does.
+  const Box2& b = o.bbox.xy;
+  if (o.footprint.empty() && !b.empty() && b.area() > 0)
+    o.footprint = {Polygon{{b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}}, {}}};
+  report.non_occluding.push_back(why + " (kept as an object that occludes nothing)");
+  return o;
+}
+
+void check_plausible(const CityObject& o, const ReadOptions& options, const std::string& file) {
+  const double h = o.bbox.zmax - o.ground_z;
+  if (h > options.max_height * (1 + 1e-9)) {  // objects of unknown height reach it exactly
+    char what[160];
+    std::snprintf(what, sizeof what,
+                  "building is %.0f m tall, more than the tallest plausible (--max-height %.0f m)",
+                  h, options.max_height);
+    throw InputError(InputProblem::Implausible, file, o.source_id, what);
+  }
+}
+
+bool is_geographic_crs(const std::string& c) {
+  return c == "OGC:CRS84" || c == "EPSG:4326" || c == "EPSG:4979";
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::Json;
+
+enum class Format { CityJson, GeoJson };
+
+Json parse(std::string_view text, const std::string& name) {
+  try {
+    return Json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.what() carries "line L, column C" and the byte offset; keep only the readable part.
+    std::string what = e.what();
+    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw InputError(InputProblem::InvalidJson, name, "",
+                     what + " (byte " + std::to_string(e.byte) + ")");
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. out_of_range.406: a number too large for a double (1e400).
+    std::string what = e.what();
+    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw InputError(InputProblem::InvalidJson, name, "", what);
+  }
+}
+
+Format detect(const Json& doc, const std::string& name) {
+  if (!doc.is_object() || !doc.contains("type") || !doc["type"].is_string())
+    throw InputError(InputProblem::UnsupportedFormat, name, "",
+                     "neither CityJSON nor GeoJSON (no top-level \"type\")");
+  const std::string type = doc["type"].get<std::string>();
+  if (type == "CityJSON") return Format::CityJson;
+  if (type == "FeatureCollection" || type == "Feature") return Format::GeoJson;
+  throw InputError(InputProblem::UnsupportedFormat, name, "",
+                   "top-level type \"" + type + "\" is neither CityJSON nor a GeoJSON feature");
+}
+
+// The terrain under footprints: the lowest and highest TIN height over a polygon. The TIN is
+// linear on each triangle, so both lie at a footprint corner, at a TIN vertex inside the
+// footprint, or where a TIN edge crosses a footprint edge; all three are visited.
+class TerrainUnder {
+ public:
+  explicit TerrainUnder(const Terrain& t) : t_(t) {
+    std::vector<Box2> boxes;
+    for (const Triangle3& tri : t.triangles) {
+      Box2 b;
+      for (const auto& v : tri.v) b.extend(Vec2{v[0], v[1]});
+      boxes.push_back(b);
+    }
+    grid_ = detail::BoxGrid(boxes);
+  }
+
+  struct Range {
+    double lo = INFINITY, hi = -INFINITY;
+    bool partial = false;  // a footprint corner lies off the TIN: its ground there is unknown
+    bool empty() const { return lo > hi; }
+    void add(double z) { lo = std::min(lo, z), hi = std::max(hi, z); }
+  };
+
+  Range under(const std::vector<Polygon>& polys) const {
+    Range r;
+    for (const Polygon& p : polys) {
+      for_each_edge(p, [&](Vec2 a, Vec2 b) {
+        if (std::optional<double> z = at(a))
+          r.add(*z);
+        else
+          r.partial = true;
+        Box2 eb;
+        eb.extend(a);
+        eb.extend(b);
+        for_each_near(eb, [&](const Triangle3& tri) {
+          for (int k = 0; k < 3; ++k) crossing(a, b, tri.v[k], tri.v[(k + 1) % 3], r);
+        });
+      });
+      for_each_near(bounds(p), [&](const Triangle3& tri) {
+        for (const auto& v : tri.v)
+          if (inside(p, Vec2{v[0], v[1]})) r.add(v[2]);
+      });
+    }
+    return r;
+  }
+
+ private:
+  using V3 = std::array<double, 3>;
+
+  // The TIN's height at q, or nullopt off the TIN.
+  std::optional<double> at(Vec2 q) const {
+    for (std::uint32_t i : grid_.at(q)) {
+      const auto& v = t_.triangles[i].v;
+      const Vec2 p0{v[0][0], v[0][1]}, p1{v[1][0], v[1][1]}, p2{v[2][0], v[2][1]};
+      const double d = cross(p1 - p0, p2 - p0);
+      if (std::abs(d) < 1e-12) continue;
+      const double l1 = cross(q - p0, p2 - p0) / d, l2 = cross(p1 - p0, q - p0) / d;
+      const double l0 = 1 - l1 - l2, eps = 1e-9;
+      if (l0 >= -eps && l1 >= -eps && l2 >= -eps) return l0 * v[0][2] + l1 * v[1][2] + l2 * v[2][2];
+    }
+    return std::nullopt;
+  }
+
+  // Adds the TIN edge pq's height where it crosses the footprint edge ab.
+  static void crossing(Vec2 a, Vec2 b, const V3& p3, const V3& q3, Range& r) {
+    const Vec2 p{p3[0], p3[1]}, q{q3[0], q3[1]};
+    const Vec2 ab = b - a, pq = q - p;
+    const double d = cross(ab, pq);
+    if (std::abs(d) < 1e-12) return;  // parallel: the endpoints decide
+    const double s = cross(p - a, pq) / d, u = cross(p - a, ab) / d;
+    if (s < 0 || s > 1 || u < 0 || u > 1) return;
+    r.add(p3[2] + u * (q3[2] - p3[2]));
+  }
+
+  template <class F>
+  void for_each_near(const Box2& b, F&& f) const {
+    if (grid_.empty() || !b.overlaps(grid_.extent())) return;
+    for (std::int64_t y = grid_.clamp_y(b.min.y); y <= grid_.clamp_y(b.max.y); ++y)
+      for (std::int64_t x = grid_.clamp_x(b.min.x); x <= grid_.clamp_x(b.max.x); ++x)
+        for (std::uint32_t i : grid_.bucket(x, y)) f(t_.triangles[i]);
+  }
+
+  const Terrain& t_;
+  detail::BoxGrid grid_;
+};
+
+// GeoJSON heights are above the ground; with a terrain (a CityJSON TINRelief read in the same
+// call, before or after) the ground is the terrain under the footprint, not z = 0. The
+// occluder stands on the LOWEST ground under it, so its top (lowest ground + eaves) never
+// exceeds the real building's (thesis 7.1); the box, which says where the building may be seen,
+// reaches the HIGHEST ground + height (as tall as it may be). The surfaces (the validator's
+// ground truth) stand on the lowest ground: OSM measures height from the lowest point where the
+// building meets the ground.
+void place_on_terrain(City& city, const std::vector<bool>& relative) {
+  const TerrainUnder terrain(city.terrain);
+  std::size_t off = 0, partial = 0;
+  std::string off_id, partial_id;
+  for (std::size_t i = 0; i < city.objects.size(); ++i) {
+    if (!relative[i]) continue;
+    CityObject& o = city.objects[i];
+    std::vector<Polygon> where = o.footprint;
+    for (const OccluderPrism& p : o.occluders) where.push_back(p.footprint);
+    const Box2& b = o.bbox.xy;
+    if (where.empty() && !b.empty())
+      where.push_back({{b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}}, {}});
+    const TerrainUnder::Range r = terrain.under(where);
+    if (r.empty()) {
+      if (off++ == 0) off_id = o.source_id;
+      continue;
+    }
+    if (r.partial && partial++ == 0) partial_id = o.source_id;
+    o.ground_z += r.lo;
+    for (OccluderPrism& p : o.occluders) p.ground_z += r.lo, p.top_z += r.lo;
+    for (Surface3& s : o.surfaces)
+      for (auto& ring : s.rings)
+        for (auto& v : ring) v[2] += r.lo;
+    o.bbox.zmin += r.lo;
+    o.bbox.zmax += r.hi;
+    ++city.report.on_terrain;
+  }
+  if (off)
+    city.report.warnings.push_back(std::to_string(off) + " GeoJSON building(s) (first " + off_id +
+                                   ") lie off the terrain: they stand at z = 0");
+  if (partial)
+    city.report.warnings.push_back(
+        std::to_string(partial) + " GeoJSON building(s) (first " + partial_id +
+        ") lie partly off the terrain: their ground is taken from the terrain under the rest");
+}
+
+struct Reader {
+  const ReadOptions& options;
+  City city;
+  std::unique_ptr<LocalFrameMapping> mapping;
+  std::vector<bool> relative;  // per object: heights relative to the ground (GeoJSON)
+
+  void add(const Json& doc, const std::string& name) {
+    const Format format = detect(doc, name);
+    const detail::InputScan scan = format == Format::CityJson
+                                       ? detail::scan_cityjson(doc, name)
+                                       : detail::scan_geojson(doc, name, options);
+    if (!mapping) {
+      city.frame = choose_local_frame(scan.kind, scan.crs, scan.bounds);
+      city.report.coordinate_note = scan.note;
+      mapping = std::make_unique<LocalFrameMapping>(city.frame);
+    } else if (scan.kind != city.frame.kind ||
+               (!scan.crs.empty() && !city.frame.crs.empty() && scan.crs != city.frame.crs)) {
+      throw InputError(InputProblem::UnknownCrs, name, "",
+                       "reference system " + (scan.crs.empty() ? "(none)" : scan.crs) +
+                           " differs from " + city.sources.front() + "'s " +
+                           (city.frame.crs.empty() ? "(none)" : city.frame.crs));
+    }
+    if (format == Format::CityJson)
+      detail::load_cityjson(doc, name, *mapping, options, city);
+    else
+      detail::load_geojson(doc, name, *mapping, options, city);
+    relative.resize(city.objects.size(), format == Format::GeoJson);
+    city.sources.push_back(name);
+  }
+
+  City finish(const std::string& name) {
+    if (city.objects.empty())
+      throw InputError(InputProblem::EmptyCity, name, "", "no building found");
+    const Box2 b = city.bounds().xy;
+    const double extent = std::max(b.max.x - b.min.x, b.max.y - b.min.y);
+    if (extent > options.max_extent) {
+      char what[160];
+      std::snprintf(what, sizeof what,
+                    "the buildings span %.0f km, more than a city can (--max-extent %.0f m)",
+                    extent / 1000, options.max_extent);
+      throw InputError(InputProblem::Implausible, name, "", what);
+    }
+    // After every file: the terrain may come after the buildings standing on it.
+    if (!city.terrain.empty() &&
+        std::find(relative.begin(), relative.end(), true) != relative.end())
+      place_on_terrain(city, relative);
+    for (std::size_t i = 0; i < city.objects.size(); ++i)
+      city.objects[i].index = static_cast<std::uint32_t>(i);
+    return std::move(city);
+  }
+};
+
+std::string slurp(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(InputProblem::Unreadable, path, "",
+                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(InputProblem::Unreadable, path, "", "cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw InputError(InputProblem::Unreadable, path, "", "read failed");
+  return s.str();
+}
+
+}  // namespace
+
+City read_city(const std::vector<std::string>& paths, const ReadOptions& options) {
+  if (paths.empty()) throw InputError(InputProblem::EmptyCity, "(no file)", "", "no input file");
+  Reader reader{options, {}, {}, {}};
+  for (const std::string& p : paths) reader.add(parse(slurp(p), p), p);
+  return reader.finish(paths.back());
+}
+
+City read_city_text(std::string_view text, const std::string& name, const ReadOptions& options) {
+  Reader reader{options, {}, {}, {}};
+  reader.add(parse(text, name), name);
+  return reader.finish(name);
+}
+
+}  // namespace urbanpvs::geometry

@@ -1,0 +1,495 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// GeoJSON (RFC 7946) reader for building footprints with height attributes, as exported from
+// OpenStreetMap or municipal cadastres. Footprints are extruded from the ground (z = 0, or the
+// terrain of a CityJSON file read with them: CityReader.cpp) to their height; OSM building:part
+// features join the building whose outline contains them, as CityJSON BuildingParts do, and then
+// alone define its occluders (the outline's own height tag is the building's maximum, which
+// would overstate a lower wing).
+//
+// Thesis 7.1: an occluder must lie inside the real building. OSM's `height` is the top of the
+// roof, so a pitched roof's occluder ends at the eaves (height - roof:height), and a part that
+// starts above the ground (min_height, building:min_level) gives no occluder at all: the 2.5D
+// occluders downstream stand on the ground, and the space below such a part is open.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+
+#include "CityReaders.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
+
+namespace urbanpvs::geometry::detail {
+namespace {
+
+const Json& features_of(const Json& doc, const std::string& file) {
+  static const Json empty = Json::array();
+  if (doc["type"] == "Feature") return empty;  // handled by the caller as a single feature
+  if (!doc.contains("features") || !doc["features"].is_array())
+    throw InputError(InputProblem::BadStructure, file, "",
+                     "FeatureCollection without \"features\"");
+  return doc["features"];
+}
+
+template <class F>
+void for_each_feature(const Json& doc, const std::string& file, F&& f) {
+  if (doc["type"] == "Feature") {
+    f(doc, 0);
+    return;
+  }
+  const Json& fs = features_of(doc, file);
+  for (std::size_t i = 0; i < fs.size(); ++i) f(fs[i], i);
+}
+
+std::string feature_id(const Json& feature, std::size_t index) {
+  auto text = [](const Json& v) -> std::string {
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number_integer()) return std::to_string(v.get<long long>());
+    if (v.is_number()) return v.dump();
+    return {};
+  };
+  if (feature.contains("id"))
+    if (std::string s = text(feature["id"]); !s.empty()) return s;
+  if (feature.contains("properties") && feature["properties"].is_object()) {
+    const Json& p = feature["properties"];
+    if (p.contains("id"))
+      if (std::string s = text(p["id"]); !s.empty()) return s;
+    // OSM exports (osmium, overpass) name the element as @type/@id: "way/4253124".
+    if (p.contains("@id"))
+      if (std::string s = text(p["@id"]); !s.empty())
+        return p.contains("@type") && p["@type"].is_string()
+                   ? p["@type"].get<std::string>() + "/" + s
+                   : s;
+  }
+  return "#" + std::to_string(index);
+}
+
+// A geometry's polygons as raw coordinate rings: [[[x, y], ...], [hole], ...].
+std::vector<const Json*> polygons_of(const Json& g, const std::string& file,
+                                     const std::string& id) {
+  const std::string type = string_member(g, "type");
+  if (!g.contains("coordinates") || !g["coordinates"].is_array())
+    throw InputError(InputProblem::BadStructure, file, id, type + " without \"coordinates\"");
+  const Json& c = g["coordinates"];
+  std::vector<const Json*> out;
+  if (type == "Polygon") {
+    out.push_back(&c);
+  } else {
+    for (const Json& p : c) out.push_back(&p);
+  }
+  if (out.empty())
+    throw InputError(InputProblem::InvalidGeometry, file, id, type + " without polygons");
+  for (const Json* p : out)
+    if (!p->is_array() || p->empty())
+      throw InputError(InputProblem::InvalidGeometry, file, id, "polygon without rings");
+  return out;
+}
+
+bool is_polygonal(const Json& g) {
+  const std::string t = g.is_object() ? string_member(g, "type") : "";
+  return t == "Polygon" || t == "MultiPolygon";
+}
+
+Vec2 position(const Json& p, const std::string& file, const std::string& id) {
+  if (!p.is_array() || p.size() < 2)
+    throw InputError(InputProblem::BadStructure, file, id, "position is not [x, y]");
+  return {json_number(p[0], file, id, "coordinate"), json_number(p[1], file, id, "coordinate")};
+}
+
+// "12", "12.5 m", "12,5m", "40 ft", "40'" -> metres; nullopt when it is no length.
+std::optional<double> parse_length(const Json& v) {
+  if (v.is_number()) {
+    const double d = v.get<double>();
+    return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
+  }
+  if (!v.is_string()) return std::nullopt;
+  std::string s = v.get<std::string>();
+  for (char& ch : s)
+    if (ch == ',') ch = '.';
+  const char* begin = s.c_str();
+  char* end = nullptr;
+  const double d = std::strtod(begin, &end);
+  if (end == begin || !std::isfinite(d)) return std::nullopt;
+  std::string unit(end);
+  unit.erase(0, unit.find_first_not_of(" \t"));
+  unit.erase(unit.find_last_not_of(" \t") + 1);
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres")
+    return d;
+  if (unit == "ft" || unit == "'" || unit == "feet") return d * 0.3048;
+  return std::nullopt;
+}
+
+struct Feature {
+  std::string id;
+  std::vector<Polygon> polygons;
+  Box2 box;
+  bool part = false;
+  double min_height = 0;
+  /// min_height or building:min_level is given but unreadable: where the part starts is
+  /// unknown, so it may float (no occluder).
+  bool base_unknown = false;
+  std::optional<double> height;  // from attributes; the default is applied when needed
+  bool height_from_levels = false;
+  std::optional<double> levels_height;  // building:levels x level height
+  std::string roof_shape;               // lower case; "" when not given
+  std::optional<double> roof_height;    // roof:height, else roof:levels x level height
+  std::string lost;                     // why no footprint of positive area is left, or empty
+};
+
+struct HeightReader {
+  const std::string& file;
+  const ReadOptions& options;
+  ReadReport& report;
+
+  std::optional<double> length(const Json& props, const char* key, const std::string& id) {
+    if (!props.contains(key) || props[key].is_null()) return std::nullopt;
+    std::optional<double> v = parse_length(props[key]);
+    if (!v)
+      report.warnings.push_back(file + ": " + id + ": cannot read " + key + " " +
+                                props[key].dump() + "; ignored");
+    return v;
+  }
+
+  static bool given(const Json& props, const char* key) {
+    return props.contains(key) && !props[key].is_null();
+  }
+
+  void read(const Json& props, Feature& f) {
+    for (const char* key : {"height", "building:height", "measuredHeight"})
+      if (!f.height) f.height = length(props, key, f.id);
+    if (std::optional<double> levels = length(props, "building:levels", f.id))
+      f.levels_height = *levels * options.level_height;
+    if (!f.height && f.levels_height) {
+      f.height = f.levels_height;
+      f.height_from_levels = true;
+    }
+    f.roof_shape = string_member(props, "roof:shape");
+    for (char& c : f.roof_shape) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (given(props, "roof:shape") && !props["roof:shape"].is_string())
+      f.roof_shape = props["roof:shape"].dump();  // "roof:shape": 9 is no shape we know: not flat
+    if (std::optional<double> r = length(props, "roof:height", f.id))
+      f.roof_height = *r;
+    else if (std::optional<double> l = length(props, "roof:levels", f.id))
+      f.roof_height = *l * options.level_height;
+    if (f.roof_height && *f.roof_height < 0) f.roof_height.reset();
+    if (std::optional<double> m = length(props, "min_height", f.id)) {
+      f.min_height = *m;
+    } else if (std::optional<double> l = length(props, "building:min_level", f.id)) {
+      f.min_height = *l * options.level_height;
+    } else if (given(props, "min_height") || given(props, "building:min_level")) {
+      // An unreadable base must not become the ground: the part may start anywhere above it.
+      f.base_unknown = true;
+      report.warnings.push_back(file + ": " + f.id +
+                                ": where the part starts is unknown; it gives no occluder");
+    }
+  }
+};
+
+Feature read_feature(const Json& feature, std::size_t index, const std::string& file,
+                     const LocalFrameMapping& mapping, HeightReader& heights, ReadReport& report) {
+  Feature f;
+  f.id = feature_id(feature, index);
+  const Json& g = feature["geometry"];
+  for (const Json* poly : polygons_of(g, file, f.id)) {
+    std::vector<Ring> rings;
+    for (const Json& ring : *poly) {
+      if (!ring.is_array())
+        throw InputError(InputProblem::BadStructure, file, f.id, "ring is not an array");
+      Ring r;
+      for (const Json& p : ring) {
+        const Vec2 in = position(p, file, f.id);
+        const auto local = mapping.to_local(in.x, in.y, 0);
+        r.push_back({local[0], local[1]});
+        f.box.extend(r.back());
+      }
+      rings.push_back(std::move(r));
+    }
+    for (Polygon& p :
+         clean_polygon(std::move(rings), {file, f.id, true, heights.options.strict}, report))
+      f.polygons.push_back(std::move(p));
+  }
+  if (f.polygons.empty()) f.lost = "no footprint of positive area left after repair";
+  const Json& props = feature.contains("properties") && feature["properties"].is_object()
+                          ? feature["properties"]
+                          : Json::object();
+  f.part = props.contains("building:part") && props["building:part"] != "no";
+  heights.read(props, f);
+  return f;
+}
+
+// A point certainly inside the polygon (for part-in-building tests): the midpoint of the first
+// interior chord found by casting a horizontal line through the middle of the outer ring.
+Vec2 interior_point(const Polygon& p) {
+  const Box2 b = bounds(p.outer);
+  for (double t : {0.5, 0.37, 0.63, 0.21, 0.79, 0.1, 0.9}) {
+    const double y = b.min.y + t * (b.max.y - b.min.y);
+    std::vector<double> xs;
+    for_each_edge(p, [&](Vec2 a, Vec2 c) {
+      if ((a.y > y) != (c.y > y)) xs.push_back(a.x + (y - a.y) * (c.x - a.x) / (c.y - a.y));
+    });
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+      if (xs[i + 1] > xs[i]) return {0.5 * (xs[i] + xs[i + 1]), y};
+  }
+  return p.outer.front();
+}
+
+// The feature's height, or nullopt when it has none and no default is given.
+std::optional<double> feature_height(Feature& f, const ReadOptions& options, ReadReport& report) {
+  if (f.height) {
+    if (f.height_from_levels) ++report.level_heights;
+    return *f.height;
+  }
+  if (!options.default_height) return std::nullopt;
+  ++report.default_heights;
+  f.height = *options.default_height;
+  return *f.height;
+}
+
+// The input's own surfaces of a footprint prism from `base` to `top`: walls, top and bottom.
+void add_prism_surfaces(const Polygon& p, double base, double top, bool blocks, bool bottom,
+                        std::vector<Surface3>& out) {
+  auto ring3 = [](const Ring& r, double z) {
+    std::vector<std::array<double, 3>> v;
+    for (Vec2 q : r) v.push_back({q.x, q.y, z});
+    return v;
+  };
+  Surface3 top_face, bottom_face;
+  top_face.rings.push_back(ring3(p.outer, top));
+  bottom_face.rings.push_back(ring3(p.outer, base));
+  for (const Ring& h : p.holes) {
+    top_face.rings.push_back(ring3(h, top));
+    bottom_face.rings.push_back(ring3(h, base));
+  }
+  top_face.blocks = bottom_face.blocks = blocks;
+  out.push_back(std::move(top_face));
+  if (bottom) out.push_back(std::move(bottom_face));
+  for_each_edge(p, [&](Vec2 a, Vec2 b) {
+    out.push_back(
+        {{{{a.x, a.y, base}, {b.x, b.y, base}, {b.x, b.y, top}, {a.x, a.y, top}}}, blocks});
+  });
+}
+
+// The top of the walls (eaves) and of the roof (ridge) of a feature of height `h`, both from the
+// ground. OSM's height (and --default-height) is the roof's top; building:levels counts the
+// storeys below the roof (OSM: roof:levels are extra), so a height from levels is the eaves.
+// A roof other than flat (roof:shape given and not "flat", or a roof:height / roof:levels with no
+// roof:shape) ends its walls roof:height below the top. With neither roof:height nor roof:levels,
+// building:levels x level height is the eaves when it is lower than `height`; else nothing tells
+// where the walls end, and the eaves are taken as min_height: no occluder volume comes from the
+// roof part (thesis 7.1: better no occluder than one through open air).
+struct WallTop {
+  double eaves = 0, top = 0;
+  bool cut = false;  // the occluder ends below `height`
+};
+
+WallTop wall_top(const Feature& f, double h) {
+  const double roof = f.roof_height.value_or(0);
+  if (f.height_from_levels) return {h, h + roof, false};
+  const bool pitched = f.roof_shape.empty() ? roof > 0 : f.roof_shape != "flat";
+  if (!pitched) return {h, h, false};
+  double eaves = f.min_height;
+  if (f.roof_height)
+    eaves = h - roof;
+  else if (f.levels_height && *f.levels_height < h)
+    eaves = *f.levels_height;
+  eaves = std::clamp(eaves, std::min(f.min_height, h), h);
+  return {eaves, h, eaves < h};
+}
+
+// Adds a feature's box, surfaces and occluders to its object; returns why it cannot occlude
+// (unknown height, geometry beyond repair), or an empty string.
+std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
+                          const ReadOptions& options, ReadReport& report) {
+  const std::optional<double> height = feature_height(f, options, report);
+  // Unknown: as tall as a building may be (ReadOptions::max_height).
+  const WallTop w = height ? wall_top(f, *height) : WallTop{0, options.max_height, false};
+  const double h = w.top;
+  if (h - f.min_height > options.max_height) {
+    char what[160];
+    std::snprintf(what, sizeof what,
+                  "height %.0f m is more than the tallest plausible (--max-height %.0f m)", h,
+                  options.max_height);
+    throw InputError(InputProblem::Implausible, file, f.id, what);
+  }
+  o.bbox.extend(f.box.min, f.min_height);
+  o.bbox.extend(f.box.max, std::max(h, f.min_height));
+  if (!height && options.strict)
+    throw InputError(InputProblem::MissingHeight, file, f.id,
+                     "no height, building:height, measuredHeight or building:levels "
+                     "(give a default height; --strict refuses objects of unknown height)");
+  if (!height)
+    return file + ": " + f.id +
+           ": no height, building:height, measuredHeight or building:levels (and no "
+           "--default-height)";
+  if (!f.lost.empty()) return file + ": " + f.id + ": " + f.lost;
+  // A roof cut to its eaves: the walls stand up to the eaves for sure; the roof above them has
+  // a shape the tags do not give, so its prism only bounds where the building may be (thesis
+  // 7.1): the validator aims at it but never lets it block.
+  for (const Polygon& p : f.polygons) {
+    const double wall = w.cut ? std::max(w.eaves, f.min_height) : h;
+    add_prism_surfaces(p, f.min_height, wall, true, true, o.surfaces);
+    if (wall < h) add_prism_surfaces(p, wall, h, false, false, o.surfaces);
+  }
+  // Parts that do not reach the ground (min_height > 0, or a base we cannot read) leave open
+  // space below them; the occluders downstream are 2.5D prisms standing on the ground, so such
+  // parts give none (never volume below min_height).
+  if (f.min_height > 0 || f.base_unknown) return {};
+  if (w.cut) ++report.roof_eaves;
+  if (w.eaves <= 0) return {};
+  for (const Polygon& p : f.polygons) o.occluders.push_back({p, 0.0, w.eaves});
+  return {};
+}
+
+// The box of a feature's raw coordinates, whatever their rings are like.
+Box2 raw_box(const Json& feature, const std::string& file, const std::string& id) {
+  Box2 b;
+  for (const Json* poly : polygons_of(feature["geometry"], file, id))
+    for (const Json& ring : *poly)
+      if (ring.is_array())
+        for (const Json& p : ring) b.extend(position(p, file, id));
+  return b;
+}
+
+}  // namespace
+
+InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptions& options) {
+  InputScan scan;
+  std::string declared;
+  if (doc.contains("crs") && doc["crs"].is_object()) {
+    const Json& c = doc["crs"];
+    if (!c.contains("properties") || !c["properties"].is_object() ||
+        !c["properties"].contains("name") || !c["properties"]["name"].is_string())
+      throw InputError(InputProblem::UnknownCrs, file, "crs", "no properties.name");
+    declared = normalise_crs(c["properties"]["name"].get<std::string>(), file);
+  }
+  for_each_feature(doc, file, [&](const Json& f, std::size_t i) {
+    if (!f.is_object() || !f.contains("geometry") || !is_polygonal(f["geometry"])) return;
+    const std::string id = feature_id(f, i);
+    for (const Json* poly : polygons_of(f["geometry"], file, id))
+      for (const Json& ring : *poly)
+        if (ring.is_array())
+          for (const Json& p : ring) scan.bounds.extend(position(p, file, id));
+  });
+  const bool lonlat_range = !scan.bounds.empty() && scan.bounds.min.x >= -180 &&
+                            scan.bounds.max.x <= 180 && scan.bounds.min.y >= -90 &&
+                            scan.bounds.max.y <= 90;
+  using C = ReadOptions::Coordinates;
+  if (options.coordinates == C::Geographic) {
+    scan.kind = LocalFrame::Kind::Geographic;
+    scan.note = file + ": WGS84 lon/lat (as requested)";
+  } else if (options.coordinates == C::Projected) {
+    scan.kind = LocalFrame::Kind::Projected;
+    scan.note = file + ": projected metres (as requested)";
+  } else if (!declared.empty()) {
+    scan.kind =
+        is_geographic_crs(declared) ? LocalFrame::Kind::Geographic : LocalFrame::Kind::Projected;
+    scan.note = file + ": reference system " + declared + " from the \"crs\" member";
+  } else {
+    scan.kind = lonlat_range ? LocalFrame::Kind::Geographic : LocalFrame::Kind::Projected;
+    scan.note =
+        file + (lonlat_range ? ": no \"crs\"; coordinates lie within lon/lat range, read as WGS84"
+                             : ": no \"crs\"; coordinates exceed lon/lat range, read as projected "
+                               "metres");
+  }
+  if (scan.kind == LocalFrame::Kind::Geographic && !lonlat_range && !scan.bounds.empty())
+    throw InputError(InputProblem::UnknownCrs, file, "",
+                     "coordinates are read as WGS84 lon/lat but exceed its range");
+  scan.crs = declared.empty() && scan.kind == LocalFrame::Kind::Geographic ? "OGC:CRS84" : declared;
+  return scan;
+}
+
+void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
+                  const ReadOptions& options, City& city) {
+  ReadReport& report = city.report;
+  HeightReader heights{file, options, report};
+  std::vector<Feature> buildings, parts;
+  for_each_feature(doc, file, [&](const Json& feature, std::size_t i) {
+    if (!feature.is_object() || string_member(feature, "type") != "Feature")
+      throw InputError(InputProblem::BadStructure, file, "#" + std::to_string(i),
+                       "not a GeoJSON Feature");
+    if (!feature.contains("geometry") || feature["geometry"].is_null()) {
+      ++report.ignored_types["(feature without geometry)"];
+      return;
+    }
+    const Json& geometry = feature["geometry"];
+    if (!geometry.is_object() || !geometry.contains("type") || !geometry["type"].is_string())
+      throw InputError(InputProblem::BadStructure, file, feature_id(feature, i),
+                       "geometry has no \"type\" string");
+    if (!is_polygonal(geometry)) {
+      const Json& g = feature["geometry"];
+      const std::string type = string_member(g, "type");
+      ++report.ignored_types[type.empty() ? "(untyped geometry)" : type];
+      return;
+    }
+    try {
+      Feature f = read_feature(feature, i, file, mapping, heights, report);
+      (f.part ? parts : buildings).push_back(std::move(f));
+    } catch (const InputError& e) {
+      if (options.strict || e.problem() != InputProblem::InvalidGeometry) throw;
+      // Beyond repair, yet still a building: kept over the box of its coordinates.
+      Feature f;
+      f.id = feature_id(feature, i);
+      const Box2 in = raw_box(feature, file, f.id);
+      if (in.empty()) {
+        report.warnings.push_back(std::string(e.what()) + " (no coordinates: skipped)");
+        return;
+      }
+      for (Vec2 c : {in.min, in.max}) {
+        const auto local = mapping.to_local(c.x, c.y, 0);
+        f.box.extend(Vec2{local[0], local[1]});
+      }
+      f.lost = e.what();
+      buildings.push_back(std::move(f));
+    }
+  });
+
+  // Attach each part to the smallest building outline that contains it.
+  std::vector<std::vector<Feature*>> parts_of(buildings.size());
+  std::vector<Feature*> orphans;
+  for (Feature& p : parts) {
+    const Vec2 q =
+        p.polygons.empty() ? 0.5 * (p.box.min + p.box.max) : interior_point(p.polygons.front());
+    std::size_t best = buildings.size();
+    double best_area = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < buildings.size(); ++b) {
+      if (!buildings[b].box.overlaps(p.box)) continue;
+      for (const Polygon& poly : buildings[b].polygons)
+        if (inside(poly, q) && area(poly) < best_area) best = b, best_area = area(poly);
+    }
+    (best < buildings.size() ? parts_of[best].push_back(&p) : orphans.push_back(&p));
+  }
+
+  auto object_of = [&](Feature& f) {
+    CityObject o;
+    o.source_id = f.id;
+    o.footprint = f.polygons;
+    o.ground_z = 0;
+    return o;
+  };
+  for (std::size_t b = 0; b < buildings.size(); ++b) {
+    Feature& f = buildings[b];
+    CityObject o = object_of(f);
+    std::string why;
+    if (parts_of[b].empty()) {
+      why = add_occluders(f, o, file, options, report);
+    } else {
+      for (Feature* p : parts_of[b])
+        if (std::string w = add_occluders(*p, o, file, options, report); why.empty()) why = w;
+      // The outline still bounds the object; its height only matters when it has its own.
+      const double h = f.height ? wall_top(f, *f.height).top : o.bbox.zmax;
+      o.bbox.extend(f.box.min, 0.0);
+      o.bbox.extend(f.box.max, h);
+    }
+    city.objects.push_back(why.empty() ? std::move(o) : non_occluding(std::move(o), why, report));
+  }
+  for (Feature* p : orphans) {
+    CityObject o = object_of(*p);
+    const std::string why = add_occluders(*p, o, file, options, report);
+    city.objects.push_back(why.empty() ? std::move(o) : non_occluding(std::move(o), why, report));
+  }
+}
+
+}  // namespace urbanpvs::geometry::detail

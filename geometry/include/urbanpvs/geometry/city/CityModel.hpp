@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The city model: what every reader produces and every later stage consumes. Coordinates are in a
+// local metric frame (east, north, up) whose relation to the input is kept in LocalFrame, so a PVS
+// file can map its cells back to the input's coordinates.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "urbanpvs/geometry/city/Polygon2.hpp"
+
+namespace urbanpvs::geometry {
+
+/// How local coordinates relate to the input's.
+struct LocalFrame {
+  enum class Kind {
+    Projected,   ///< input in a metric CRS; local = input - origin
+    Geographic,  ///< input in WGS84 lon/lat; local = east/north/up around origin_lon/lat/h
+  };
+  Kind kind = Kind::Projected;
+  std::string crs;                 ///< e.g. "EPSG:7415"; empty when the input names none
+  std::array<double, 3> origin{};  ///< projected: input coordinates of the local origin
+  double origin_lon = 0, origin_lat = 0, origin_h = 0;  ///< geographic: WGS84 origin
+};
+
+/// A volume that is certainly inside a real building: the prism over `footprint` from
+/// `ground_z` up to `top_z` (absolute heights). Thesis 7.1: occluders must be a subset of the
+/// building, so `top_z` is the lowest roof point (eaves, not ridge) of the part it comes from.
+struct OccluderPrism {
+  Polygon footprint;
+  double ground_z = 0;
+  double top_z = 0;
+};
+
+/// A triangle in absolute coordinates (terrain).
+struct Triangle3 {
+  std::array<std::array<double, 3>, 3> v;
+};
+
+/// One planar surface of the input as it was given (absolute coordinates, local frame): the
+/// outer ring first, then its holes; rings are open (the first point is not repeated).
+/// urbanpvs-validate builds its ground truth from these, never from the occluders derived from
+/// them, so a mistake in deriving occluders cannot hide itself.
+struct Surface3 {
+  std::vector<std::vector<std::array<double, 3>>> rings;
+  /// False for a surface that bounds where the building may be, not where it surely is (a roof
+  /// of unknown shape above the eaves): a target of validation, never a blocker.
+  bool blocks = true;
+};
+
+/// One building (with all its parts): the unit a PVS lists.
+struct CityObject {
+  std::uint32_t index = 0;  ///< stable: position in City::objects, in input order
+  std::string source_id;    ///< CityJSON key, GeoJSON id / properties.id / @type/@id, or #<n>
+  std::vector<Polygon> footprint;        ///< ground footprint of every part reaching the ground
+  double ground_z = 0;                   ///< lowest point of the object
+  Box3 bbox;                             ///< of all its geometry, parts above the ground included
+  std::vector<OccluderPrism> occluders;  ///< may be empty (e.g. only raised parts)
+  /// The input's own surfaces of this object: CityJSON, every surface of the chosen LoD of the
+  /// building, its parts and installations; GeoJSON, the walls, top and bottom of each part's
+  /// prism from its base to its full height (the roof's top).
+  std::vector<Surface3> surfaces;
+  /// False when the object cannot be an occluder (geometry beyond repair, no height): it has no
+  /// occluders and its surfaces block nothing in validation, but it is still listed, tested
+  /// for visibility over its whole box (as tall as it may be), and its footprint (or box) is
+  /// still taken out of free space, so no view cell lies inside it.
+  bool occludes = true;
+};
+
+/// A triangulated terrain (CityJSON TINRelief), absolute heights.
+struct Terrain {
+  std::vector<Triangle3> triangles;
+  bool empty() const { return triangles.empty(); }
+};
+
+/// What reading did besides producing objects: shown to the user, never silent.
+struct ReadReport {
+  std::map<std::string, std::size_t> ignored_types;  ///< city object type -> count
+  std::size_t repaired_duplicate_points = 0;
+  std::size_t repaired_orientation = 0;
+  std::size_t repaired_unclosed = 0;
+  std::size_t default_heights = 0;  ///< objects whose height came from --default-height
+  std::size_t level_heights = 0;    ///< heights from building:levels x level height
+  /// CityJSON parts on the ground without GroundSurface whose footprint is the projection of
+  /// their upward surfaces, checked to lie within their walls (no eaves overhang).
+  std::size_t footprints_from_roof = 0;
+  /// Such parts whose roof overhangs the walls: footprint from the walls' bottom edges instead.
+  std::size_t footprints_from_walls = 0;
+  /// Such parts whose walls give no closed footprint either: no occluder (conservative).
+  std::size_t footprints_unknown = 0;
+  /// CityJSON parts off the ground (on an OuterCeilingSurface, or floating): no occluder.
+  std::size_t raised_parts = 0;
+  /// GeoJSON buildings and parts whose occluder was cut from `height` down to the eaves.
+  std::size_t roof_eaves = 0;
+  /// GeoJSON objects set on the terrain (TINRelief) of a CityJSON file read with them.
+  std::size_t on_terrain = 0;
+  /// BuildingInstallations (and other non-part children) merged into their building.
+  std::size_t installations = 0;
+  /// Every repair that changed geometry, one line each: "file: id: what was done".
+  std::vector<std::string> repairs;
+  /// Every object kept without occluders, one line each: "file: id: why".
+  std::vector<std::string> non_occluding;
+  std::vector<std::string> warnings;
+  std::string coordinate_note;  ///< how the CRS / lon-lat decision was made
+};
+
+struct City {
+  LocalFrame frame;
+  std::vector<CityObject> objects;
+  Terrain terrain;
+  ReadReport report;
+  std::vector<std::string> sources;  ///< files read, in order
+
+  Box3 bounds() const {
+    Box3 b;
+    for (const CityObject& o : objects) b.extend(o.bbox);
+    return b;
+  }
+};
+
+}  // namespace urbanpvs::geometry

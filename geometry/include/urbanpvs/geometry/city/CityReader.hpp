@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Reads city models into a City: CityJSON 1.1/2.0 (.city.json, .json) and GeoJSON (.geojson).
+// The format is recognised from the content, not the extension.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "urbanpvs/geometry/city/CityModel.hpp"
+
+namespace urbanpvs::geometry {
+
+struct ReadOptions {
+  /// Height (m) of GeoJSON buildings that carry no height attribute. Unset: such a building is
+  /// an InputError(MissingHeight). [Limit: > 0]
+  std::optional<double> default_height;
+  /// Height of one storey (m) for building:levels / building:min_level. [Limit: > 0]
+  double level_height = 3.0;
+  /// How GeoJSON coordinates are read; Auto decides from the "crs" member, else from the range.
+  enum class Coordinates { Auto, Geographic, Projected } coordinates = Coordinates::Auto;
+  /// Refuse input that needs geometric repair (InputError(InvalidGeometry)) instead of
+  /// repairing it, or keeping a building beyond repair as a non-occluding object.
+  bool strict = false;
+  /// The tallest plausible building above its ground. Taller input is refused
+  /// (InputError(Implausible)); objects of unknown height are tested for visibility up to it,
+  /// as tall as they may be. [Units: m] [Limit: > 0]
+  double max_height = 1000.0;
+  /// The largest plausible extent of a city (either side of its bounding rectangle); larger
+  /// input is refused (InputError(Implausible)) rather than baked for hours. [Units: m]
+  /// [Limit: > 0]
+  double max_extent = 300000.0;
+};
+
+/// Reads every file into one city (all files must share one coordinate reference system).
+/// Throws InputError naming the file, the feature and the problem.
+City read_city(const std::vector<std::string>& paths, const ReadOptions& options = {});
+
+/// Reads a city from text held in memory; `name` stands for the file in messages.
+City read_city_text(std::string_view text, const std::string& name,
+                    const ReadOptions& options = {});
+
+}  // namespace urbanpvs::geometry

@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/preprocess/bake/BakeScene.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <stdexcept>
+#include <string>
+
+#include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
+
+namespace urbanpvs::preprocess {
+namespace {
+
+runtime::Metadata metadata_of(const geometry::City& city, const BakeOptions& o) {
+  runtime::Metadata m;
+  m.frame.crs = city.frame.crs;
+  m.frame.geographic = city.frame.kind == geometry::LocalFrame::Kind::Geographic;
+  m.frame.geodetic_origin = {city.frame.origin_lat, city.frame.origin_lon, city.frame.origin_h};
+  m.frame.origin = city.frame.origin;
+  m.settings.epsilon_m = o.cells.epsilon;
+  m.settings.pixel_size_m = o.pixel;
+  m.settings.max_cell_edge_m = o.cells.max_cell_edge;
+  m.settings.eye_min_m = o.cells.eye_min;
+  m.settings.eye_max_m = o.cells.eye_max;
+  return m;
+}
+
+std::vector<geometry::Box3> occluder_boxes(const std::vector<geometry::Occluder>& occluders) {
+  std::vector<geometry::Box3> out;
+  out.reserve(occluders.size());
+  for (const geometry::Occluder& o : occluders) {
+    geometry::Box3 b;
+    b.xy = o.bounds;
+    b.zmin = -std::numeric_limits<double>::infinity();  // prisms stand on the ground
+    b.zmax = o.top_z;
+    out.push_back(b);
+  }
+  return out;
+}
+
+std::vector<geometry::Box3> object_boxes(const std::vector<geometry::CityObject>& objects) {
+  std::vector<geometry::Box3> out;
+  out.reserve(objects.size());
+  for (const geometry::CityObject& o : objects) out.push_back(o.bbox);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& o) {
+  auto exact = [](double v) {
+    char text[64];
+    const auto result = std::to_chars(text, text + sizeof text, v);
+    return std::string(text, result.ptr);
+  };
+  return {
+      {"epsilon_m", exact(o.cells.epsilon)},
+      {"pixel_m", exact(o.pixel)},
+      {"max_cell_edge_m", exact(o.cells.max_cell_edge)},
+      {"eye_min_m", exact(o.cells.eye_min)},
+      {"eye_max_m", exact(o.cells.eye_max)},
+      {"margin_m", exact(o.cells.margin)},
+      {"narrow_gap_m", exact(o.cells.narrow_gap)},
+      {"snap_m", exact(o.cells.snap)},
+      {"min_cell_edge_m", exact(o.cells.min_cell_edge)},
+      {"gap_tolerance_m", exact(o.blocks.gap_tolerance)},
+      {"height_step_m", exact(o.blocks.height_step)},
+      {"backend", o.backend == Backend::Cpu ? "cpu" : "osmesa"},
+      {"method", o.method == Method::Hierarchical ? "hierarchical" : "brute-force"},
+      {"initial_map_px", std::to_string(o.initial_map)},
+      {"max_map_px", std::to_string(o.max_map)},
+      {"horizon_sectors", std::to_string(SampleHorizon::kBins)},
+      {"shrink_override_m", exact(o.shrink_override)},
+  };
+}
+
+void BakeOptions::validate() const {
+  CullMapSettings{cells.epsilon, pixel}.validate();
+  geometry::validate(cells);
+  if (initial_map < 8 || initial_map > 65536)
+    throw std::invalid_argument("initial cull-map size " + std::to_string(initial_map) +
+                                " pixels is outside 8 .. 65536");
+  if (max_map < initial_map || max_map > 65536)
+    throw std::invalid_argument("largest cull-map size " + std::to_string(max_map) +
+                                " pixels is outside initial_map (" + std::to_string(initial_map) +
+                                ") .. 65536");
+  if (!(blocks.gap_tolerance >= 0))
+    throw std::invalid_argument("block gap tolerance must be >= 0 m");
+}
+
+BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
+    : city_(&city), options_(options) {
+  // Walls closer than the block gap are one wall for the cells too: one setting, both stages.
+  options_.cells.gap = options_.blocks.gap_tolerance;
+  options_.validate();
+  blocks_ = geometry::build_blocks(city.objects, options_.blocks);
+  const double shrink =
+      options_.shrink_override >= 0 ? options_.shrink_override : options_.cells.epsilon;
+  occluders_ = geometry::shrink_blocks(blocks_, shrink);
+  mesh_ = geometry::build_view_cells(city, options_.cells);
+
+  // Two pixels of margin: every object's footprint and every cell lies strictly inside, so the
+  // largest map decides everything.
+  geometry::Box2 covered = mesh_.bounds;
+  covered.extend(city.bounds().xy);
+  area_ = CullMapGrid::covering(covered.grown(2 * options_.pixel), options_.pixel);
+  const geometry::Box3 all = city.bounds();
+  zlo_ = all.zmin - 1.0;
+  for (const geometry::ViewCell& c : mesh_.cells) zlo_ = std::min(zlo_, c.zmin - 1.0);
+  zhi_ = all.zmax + 1000.0;
+  object_index_ = BoxQuadtree(object_boxes(city.objects));
+  occluder_index_ = BoxQuadtree(occluder_boxes(occluders_));
+}
+
+std::vector<Vec3> BakeScene::samples(std::uint32_t cell) const {
+  std::vector<Vec3> out;
+  for (std::uint32_t e : mesh_.cells[cell].edge)
+    for (const geometry::Point3& p : mesh_.samples_of(mesh_.edges[e]))
+      out.push_back({p.x, p.y, p.z});
+  return out;
+}
+
+runtime::CellRecord BakeScene::cell_record(std::uint32_t cell,
+                                           std::vector<std::uint32_t> pvs) const {
+  const geometry::ViewCell& c = mesh_.cells[cell];
+  runtime::CellRecord rec;
+  // The runtime numbers neighbours by edge k = corner k -> k+1, the mesh by opposite corner.
+  for (int k = 0; k < 3; ++k) {
+    rec.triangle[static_cast<std::size_t>(k)] = {c.corner[static_cast<std::size_t>(k)].x,
+                                                 c.corner[static_cast<std::size_t>(k)].y};
+    const std::int32_t n = c.neighbour[static_cast<std::size_t>((k + 2) % 3)];
+    rec.neighbours[static_cast<std::size_t>(k)] =
+        n < 0 ? runtime::kNoCell : static_cast<std::uint32_t>(n);
+  }
+  rec.z_min = c.zmin;
+  rec.z_max = c.zmax;
+  rec.pvs = std::move(pvs);
+  return rec;
+}
+
+runtime::PvsBake BakeScene::pvs_file(std::vector<std::vector<std::uint32_t>> pvs,
+                                     std::vector<std::pair<std::string, std::string>> properties,
+                                     std::uint64_t input_hash) const {
+  if (pvs.size() != cell_count())
+    throw std::invalid_argument("BakeScene::pvs_file: " + std::to_string(pvs.size()) +
+                                " PVSs for " + std::to_string(cell_count()) + " cells");
+  runtime::PvsBake bake;
+  bake.meta = metadata_of(*city_, options_);
+  bake.meta.settings.input_hash = input_hash;
+  bake.meta.properties = std::move(properties);
+  bake.objects.reserve(city_->objects.size());
+  for (const geometry::CityObject& o : city_->objects)
+    bake.objects.push_back({o.source_id,
+                            {o.bbox.xy.min.x, o.bbox.xy.min.y, o.bbox.zmin, o.bbox.xy.max.x,
+                             o.bbox.xy.max.y, o.bbox.zmax}});
+  bake.cells.reserve(cell_count());
+  for (std::uint32_t c = 0; c < cell_count(); ++c)
+    bake.cells.push_back(cell_record(c, std::move(pvs[c])));
+  return bake;
+}
+
+}  // namespace urbanpvs::preprocess

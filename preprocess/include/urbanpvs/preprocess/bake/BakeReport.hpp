@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// What a finished bake reports: the JSON report (--report) and the summary on standard error
+// come from this one struct, so they never disagree.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "urbanpvs/preprocess/visibility/CellVisibility.hpp"
+
+namespace urbanpvs::preprocess {
+
+/// Wall-clock seconds per stage.
+struct StageSeconds {
+  double read = 0;        ///< reading and hashing the inputs and the region
+  double scene = 0;       ///< blocks, shrunk occluders, view cells, indices (BakeScene)
+  double visibility = 0;  ///< every cell's PVS, including the journal
+  double write = 0;       ///< encoding and writing the file (and the report)
+  double total() const { return read + scene + visibility + write; }
+};
+
+struct InputFileInfo {
+  std::string path;
+  std::uint64_t bytes = 0;
+};
+
+struct BakeReport {
+  std::string tool;  ///< "urbanpvs-preprocess <version>"
+  std::vector<InputFileInfo> inputs;
+  std::uint64_t input_hash = 0;   ///< as stored in the file (hash_input_files)
+  std::uint64_t fingerprint = 0;  ///< as stored in the journal (bake_fingerprint)
+  std::string output;
+  std::uint64_t output_bytes = 0;
+  /// The settings stored in the file's metadata properties, in their order.
+  std::vector<std::pair<std::string, std::string>> settings;
+  unsigned threads = 1;
+  std::size_t objects = 0, blocks = 0, occluders = 0, cells = 0;
+  /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding).
+  std::vector<std::string> repairs, non_occluding;
+  std::size_t cells_computed = 0;      ///< by this run
+  std::size_t cells_from_journal = 0;  ///< taken from a resumed journal
+  std::uint64_t pvs_entries = 0;       ///< sum of PVS sizes over all cells
+  std::uint64_t pvs_max = 0;
+  StageSeconds seconds;
+  CellCounters counters;  ///< summed over every cell, journal cells included
+  std::uint64_t peak_memory_bytes = 0;
+
+  double mean_pvs() const { return cells > 0 ? double(pvs_entries) / double(cells) : 0.0; }
+  /// 1 − mean PVS / objects: the share of objects a renderer skips in the average cell.
+  double fraction_culled() const { return objects > 0 ? 1.0 - mean_pvs() / double(objects) : 0.0; }
+  /// Cells computed by this run per second of the visibility stage.
+  double cells_per_second() const {
+    return seconds.visibility > 0 ? double(cells_computed) / seconds.visibility : 0.0;
+  }
+};
+
+/// The report as pretty-printed JSON (see README, "Report"). Settings whose text is a JSON
+/// number or boolean appear as such, the others as strings.
+std::string report_json(const BakeReport& report);
+
+/// The human summary printed on standard error, several lines, each ending in '\n'.
+std::string summary_text(const BakeReport& report);
+
+/// The process's peak resident memory so far (getrusage ru_maxrss). [Units: bytes]
+std::uint64_t peak_memory_bytes();
+
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Everything the per-cell visibility work reads, built once from the city and shared read-only
+// by every thread (thesis 5.2.4): blocks, occluders shrunk by ε, view cells with their samples,
+// the area the cull maps cover, and quadtrees of objects and occluders. Data flows one way:
+// city → blocks/occluders → view cells → (per cell) cull maps → PVS.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "urbanpvs/geometry/occluders/Blocks.hpp"
+#include "urbanpvs/geometry/occluders/Occluder.hpp"
+#include "urbanpvs/geometry/cells/ViewCells.hpp"
+#include "urbanpvs/preprocess/visibility/CellMapRenderer.hpp"
+#include "urbanpvs/preprocess/visibility/CullMap.hpp"
+#include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
+#include "urbanpvs/runtime/pvs_writer.hpp"
+
+namespace urbanpvs::preprocess {
+
+enum class Method { Hierarchical, BruteForce };
+
+/// One settings struct for the whole bake; stored in the output (thesis 7.2 couples ε and the
+/// pixel size: CullMapSettings::validate).
+struct BakeOptions {
+  geometry::BlockOptions blocks;
+  geometry::ViewCellOptions cells;  ///< cells.epsilon is the ε of shrinking and sampling
+  double pixel = 1.39;              ///< cull-map pixel size [Units: m] [Limit: <= max_pixel(ε)]
+  Backend backend = Backend::Cpu;
+  Method method = Method::Hierarchical;
+  /// Side of the first cull map of the hierarchical test [Units: pixels] [Limit: 8 .. 65536]
+  int initial_map = 128;
+  /// Largest cull map side [Units: pixels] [Limit: initial_map .. 65536]. Maps grow ×2 up to
+  /// it; what is still undecided beyond it is decided by the samples' horizons (SampleHorizon),
+  /// which cost far less than large maps and lose almost nothing against them. 65536: maps
+  /// alone, grown until they cover the city (the thesis's form).
+  int max_map = 128;
+  /// Occluders are shrunk by this instead of cells.epsilon. Only for tests that must show a
+  /// broken bake is caught (urbanpvs-validate); never set it otherwise. [Units: m]
+  double shrink_override = -1;
+
+  /// Throws std::invalid_argument naming the value to change.
+  void validate() const;
+};
+
+/// Every bake option that changes the result, as (key, value) text in a fixed order, numbers as
+/// the shortest text that reads back to the same double. Stored in the output file's properties
+/// (BakeScene::pvs_file) and part of urbanpvs-preprocess's journal fingerprint.
+std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& options);
+
+class BakeScene {
+ public:
+  /// Throws std::invalid_argument for invalid options (geometry errors propagate).
+  BakeScene(const geometry::City& city, const BakeOptions& options);
+
+  const geometry::City& city() const { return *city_; }
+  const BakeOptions& options() const { return options_; }
+  const std::vector<geometry::Block>& blocks() const { return blocks_; }
+  const std::vector<geometry::Occluder>& occluders() const { return occluders_; }
+  const geometry::ViewCellMesh& mesh() const { return mesh_; }
+  std::size_t cell_count() const { return mesh_.cells.size(); }
+
+  /// The pixel lattice every cull map is cut from, covering the cells and every building.
+  const CullMapGrid& area() const { return area_; }
+  double zlo() const { return zlo_; }  ///< below every object
+  double zhi() const { return zhi_; }  ///< above every occluder
+  const BoxQuadtree& object_index() const { return object_index_; }
+  const BoxQuadtree& occluder_index() const { return occluder_index_; }
+
+  /// The samples of a cell: those of its three top edges (thesis 5.3).
+  std::vector<Vec3> samples(std::uint32_t cell) const;
+  /// The one assembly of the output file, for bake_city and urbanpvs-preprocess alike: frame
+  /// and settings of this scene, the objects in city order, cell i with `pvs[i]` (one per cell),
+  /// and `properties` stored as given: bake_properties() of the options, then whatever the
+  /// caller adds (urbanpvs-preprocess: its version, reading options, region and inputs).
+  runtime::PvsBake pvs_file(std::vector<std::vector<std::uint32_t>> pvs,
+                            std::vector<std::pair<std::string, std::string>> properties,
+                            std::uint64_t input_hash = 0) const;
+
+ private:
+  runtime::CellRecord cell_record(std::uint32_t cell, std::vector<std::uint32_t> pvs) const;
+
+  const geometry::City* city_;
+  BakeOptions options_;
+  std::vector<geometry::Block> blocks_;
+  std::vector<geometry::Occluder> occluders_;
+  geometry::ViewCellMesh mesh_;
+  CullMapGrid area_;
+  double zlo_ = 0, zhi_ = 0;
+  BoxQuadtree object_index_, occluder_index_;
+};
+
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The occlusion horizon of one sample point, in polar form: for every direction around the
+// sample (kBins sectors of the full circle), the steepest slope below which everything is hidden
+// beyond the walls met so far. It is the cull map's horizon of thesis 5.6 taken per sample
+// instead of after the merge: an object is hidden from the whole cell exactly when it is hidden
+// from every sample (the merge is a min over samples, thesis 5.5), and per sample the umbra of
+// 2.5D occluders is a function of direction and distance alone (the height along a ray from the
+// sample rises linearly behind each wall it crosses, thesis 4.2.1). That makes it cheap far from
+// the cell, where a cull map would need millions of pixels per sample.
+//
+// Conservative by construction, for the same ε-shrunk occluders as the cull maps:
+//  - a sector counts a wall only when the facing walls of one ring cover the whole sector, and
+//    only from the distance where every ray of the sector has crossed one of them;
+//  - the slope of a sector is the least over its rays (the ray that crosses farthest);
+//  - a box is tested over every sector it touches, in each at its nearest point there, counting
+//    only walls the sector's rays have crossed by then.
+// So whatever it hides is hidden in the exact per-sample umbra, and so in the brute-force cull
+// map, which samples that umbra at pixel centres, for every centre the box holds.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "urbanpvs/geometry/occluders/Occluder.hpp"
+#include "urbanpvs/preprocess/visibility/OccluderShadow.hpp"
+
+namespace urbanpvs::preprocess {
+
+class SampleHorizon {
+ public:
+  /// Sectors of the full circle: 2π/2048 ≈ 0.18°, 0.9 m at 300 m.
+  static constexpr int kBins = 2048;
+
+  SampleHorizon();
+  /// Starts over for `sample`: nothing hidden anywhere.
+  void reset(const Vec3& sample);
+  const Vec3& sample() const { return sample_; }
+
+  /// Ground distance from the sample to `box` (0 when the sample lies in it).
+  double distance_to(const geometry::Box2& box) const;
+
+  /// True when everything in `box` up to box.zmax is hidden from the sample by the walls added
+  /// so far that it lies behind. Meant for a front-to-back sweep (queries in order of
+  /// distance_to, walls added as the sweep reaches them): then it misses no wall in front of the
+  /// box. Any order stays conservative: a wall only counts from the distance where it has cut
+  /// every ray of its sector.
+  bool hides(const geometry::Box3& box);
+
+  /// True when the point `p` at height `top` is hidden by the walls added so far. For
+  /// deciding objects the way a cull map does, by the pixel centres their box touches (thesis 7.2),
+  /// where the box as a whole is not hidden.
+  bool hides_point(Vec2 p, double top) const;
+
+  /// Adds the walls of `occluder` that face the sample and rise above it. Call it once the
+  /// sweep has reached the occluder (distance_to(occluder.bounds) >= the last query's).
+  void add(const geometry::Occluder& occluder);
+
+ private:
+  struct Entry {
+    double reach;  ///< from this distance on every ray of the sector has crossed the walls
+    double slope;  ///< and everything below sample.z + slope·distance is hidden
+  };
+  static constexpr int kSlots = 8;
+
+  void add_ring(const geometry::Ring& ring, double top, bool hole);
+  template <class Angle>
+  void close_sectors(const geometry::Ring& ring, std::size_t k0, std::size_t k1, Angle&& angle,
+                     long long t0, long long t1, double top, std::uint32_t skip_mark,
+                     std::uint32_t mark);
+  void insert(int bin, Entry e);
+  void settle(int bin, double distance);
+  double slope_at(int bin, double distance) const;  ///< of the walls passed at `distance`
+
+  Vec3 sample_;
+  double front_ = 0;            ///< farthest query so far: walls passed there settle
+  std::vector<Entry> settled_;  ///< per sector: the steepest passed wall (-infinity: none)
+  std::vector<std::array<Entry, kSlots>> pending_;  ///< per sector: walls not yet passed
+  std::vector<std::uint8_t> pending_count_;
+  std::vector<double> angle_, reach_;  ///< scratch of add_ring (reach_ per sector, kept 0)
+  std::vector<int> touched_;
+  std::vector<std::uint32_t> sector_mark_;  ///< sectors a run of the current ring closed
+  std::uint32_t mark_ = 0;
+};
+
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// One sight line against the occluders, exactly: the test a cull map makes at one pixel centre
+// for one sample (thesis 4.2.1: a point lies in an edge's shadow when the line from the sample
+// to it passes the edge below the wall's top). The sample horizons use it where their sectors
+// cannot decide a pixel centre, so that far from the cell they judge exactly as the brute-force
+// map does.
+#pragma once
+
+#include <span>
+
+#include "urbanpvs/geometry/occluders/Occluder.hpp"
+#include "urbanpvs/preprocess/visibility/OccluderShadow.hpp"
+#include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
+
+namespace urbanpvs::preprocess {
+
+/// True when the segment from `from` to `to` crosses an occluder wall more than `margin` below
+/// the wall's top. `tree` indexes `occluders` (BakeScene::occluder_index()).
+bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tree,
+                        std::span<const geometry::Occluder> occluders, double margin);
+
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,348 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace urbanpvs::preprocess {
+namespace {
+
+constexpr double kSector = 2 * std::numbers::pi / SampleHorizon::kBins;
+// Angles come from atan2 and differences of them: a few ulps off. Intervals a wall covers are
+// narrowed, intervals a box covers widened by this much, so rounding never adds a sector.
+constexpr double kAngleSlack = 1e-9;
+constexpr std::uint32_t kNoMark = 0xffffffffu;  // a sector mark no sector carries
+
+int bin_of(long long sector) {
+  return static_cast<int>(((sector % SampleHorizon::kBins) + SampleHorizon::kBins) %
+                          SampleHorizon::kBins);
+}
+
+Vec2 direction(double a) {
+  return {std::cos(a), std::sin(a)};
+}
+
+// The directions of the sector borders, computed once.
+const std::array<Vec2, SampleHorizon::kBins> kBorders = [] {
+  std::array<Vec2, SampleHorizon::kBins> t;
+  for (int k = 0; k < SampleHorizon::kBins; ++k)
+    t[static_cast<std::size_t>(k)] = direction(k * kSector);
+  return t;
+}();
+
+// Direction of the border where sector t begins.
+Vec2 border(long long t) {
+  return kBorders[static_cast<std::size_t>(bin_of(t))];
+}
+
+double wrap_pi(double a) {
+  while (a > std::numbers::pi) a -= 2 * std::numbers::pi;
+  while (a <= -std::numbers::pi) a += 2 * std::numbers::pi;
+  return a;
+}
+
+}  // namespace
+
+SampleHorizon::SampleHorizon()
+    : settled_(kBins),
+      pending_(kBins),
+      pending_count_(kBins),
+      reach_(kBins),
+      sector_mark_(kBins, 0) {}
+
+void SampleHorizon::reset(const Vec3& sample) {
+  sample_ = sample;
+  front_ = 0;
+  std::fill(settled_.begin(), settled_.end(), Entry{0, -std::numeric_limits<double>::infinity()});
+  std::fill(pending_count_.begin(), pending_count_.end(), std::uint8_t{0});
+}
+
+double SampleHorizon::distance_to(const geometry::Box2& box) const {
+  const double dx = std::max({0.0, box.min.x - sample_.x, sample_.x - box.max.x});
+  const double dy = std::max({0.0, box.min.y - sample_.y, sample_.y - box.max.y});
+  return std::hypot(dx, dy);
+}
+
+double SampleHorizon::slope_at(int bin, double distance) const {
+  const auto b = static_cast<std::size_t>(bin);
+  double slope =
+      settled_[b].reach <= distance ? settled_[b].slope : -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < pending_count_[b]; ++k)
+    if (pending_[b][static_cast<std::size_t>(k)].reach <= distance)
+      slope = std::max(slope, pending_[b][static_cast<std::size_t>(k)].slope);
+  return slope;
+}
+
+void SampleHorizon::settle(int bin, double distance) {
+  auto& slots = pending_[static_cast<std::size_t>(bin)];
+  std::uint8_t& n = pending_count_[static_cast<std::size_t>(bin)];
+  Entry& settled = settled_[static_cast<std::size_t>(bin)];
+  for (int k = 0; k < n;) {
+    const Entry& p = slots[static_cast<std::size_t>(k)];
+    if (p.reach <= distance) {
+      if (p.slope > settled.slope) settled = p;
+      slots[static_cast<std::size_t>(k)] = slots[static_cast<std::size_t>(--n)];
+    } else {
+      ++k;
+    }
+  }
+}
+
+void SampleHorizon::insert(int bin, Entry e) {
+  const auto b = static_cast<std::size_t>(bin);
+  Entry& settled = settled_[b];
+  // A wall that takes effect no sooner and hides no more than the settled one adds nothing.
+  if (settled.reach <= e.reach && settled.slope >= e.slope) return;
+  if (e.reach <= front_) {  // the sweep has passed it already
+    if (e.slope > settled.slope) settled = e;
+    return;
+  }
+  auto& slots = pending_[b];
+  std::uint8_t& n = pending_count_[b];
+  // Pending walls form a staircase: one that takes effect no sooner and hides no more than
+  // another adds nothing, and the new one may make others redundant.
+  for (int k = 0; k < n; ++k) {
+    const Entry& p = slots[static_cast<std::size_t>(k)];
+    if (p.reach <= e.reach && p.slope >= e.slope) return;
+  }
+  for (int k = 0; k < n;) {
+    const Entry& p = slots[static_cast<std::size_t>(k)];
+    if (p.reach >= e.reach && p.slope <= e.slope)
+      slots[static_cast<std::size_t>(k)] = slots[static_cast<std::size_t>(--n)];
+    else
+      ++k;
+  }
+  if (n < kSlots) {
+    slots[n++] = e;
+    return;
+  }
+  // Full: fold into the entry that takes effect last. Both hold beyond the larger reach, so the
+  // larger slope does too; the nearer one is only delayed (weaker, still conservative).
+  Entry* last = &slots[0];
+  for (Entry& p : slots)
+    if (p.reach > last->reach) last = &p;
+  last->reach = std::max(last->reach, e.reach);
+  last->slope = std::max(last->slope, e.slope);
+}
+
+// Where the ray from the origin along `u` enters `box` (relative to the origin), or infinity.
+double entry_along(const geometry::Box2& box, Vec2 u) {
+  double t0, t1;
+  return geometry::clip_line_to_box({0, 0}, u, box, std::numeric_limits<double>::infinity(), &t0,
+                                    &t1)
+             ? t0
+             : std::numeric_limits<double>::infinity();
+}
+
+bool SampleHorizon::hides(const geometry::Box3& box) {
+  const double d = distance_to(box.xy);
+  front_ = std::max(front_, d);
+  if (!(d > 0)) return false;
+  const Vec2 s{sample_.x, sample_.y};
+  const geometry::Box2 rel{box.xy.min - s, box.xy.max - s};  // the box seen from the sample
+  const std::array<Vec2, 4> corner{rel.min, Vec2{rel.max.x, rel.min.y}, rel.max,
+                                   Vec2{rel.min.x, rel.max.y}};
+  // The box does not contain the sample, so seen from it the box spans less than π around the
+  // direction to its centre.
+  const Vec2 c = 0.5 * (rel.min + rel.max);
+  const double base = std::atan2(c.y, c.x);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, reach = 0;
+  for (Vec2 v : corner) {
+    const double a = std::atan2(geometry::cross(c, v), geometry::dot(c, v));
+    lo = std::min(lo, a);
+    hi = std::max(hi, a);
+    reach = std::max(reach, std::hypot(v.x, v.y));
+  }
+  lo += base - kAngleSlack;
+  hi += base + kAngleSlack;
+  const auto first = static_cast<long long>(std::floor(lo / kSector));
+  const auto last = static_cast<long long>(std::floor(hi / kSector));
+  if (last - first + 1 >= kBins) return false;
+  // The nearest point of the whole box, and whether a sector's wedge holds it.
+  const Vec2 nearest{std::clamp(0.0, rel.min.x, rel.max.x), std::clamp(0.0, rel.min.y, rel.max.y)};
+  const double rise = box.zmax - sample_.z;
+  for (long long t = first; t <= last; ++t) {
+    const int b = bin_of(t);
+    settle(b, d);
+    const Entry& settled = settled_[static_cast<std::size_t>(b)];
+    if (settled.reach <= d && (rise > 0 ? settled.slope * d > rise : settled.slope * reach > rise))
+      continue;  // hidden already
+    // Else look closer: the nearest point of the box inside the sector's wedge is the box's
+    // nearest point when the wedge holds it, else where one of the wedge's borders enters the
+    // box; walls still pending up to that distance count too.
+    const double a0 = std::max(lo, static_cast<double>(t) * kSector);
+    const double a1 = std::min(hi, static_cast<double>(t + 1) * kSector);
+    const Vec2 u0 = t == first ? direction(a0) : border(t);
+    const Vec2 u1 = t == last ? direction(a1) : border(t + 1);
+    double near = d;
+    if (!(geometry::cross(u0, nearest) >= 0 && geometry::cross(nearest, u1) >= 0)) {
+      near = std::min(entry_along(rel, u0), entry_along(rel, u1));
+      near = std::isfinite(near) ? std::max(d, near * (1 - 1e-9)) : d;
+    }
+    // The steepest slope a point of the box's top shows in this sector: at its nearest distance
+    // when the top is above the sample, at the farthest when below.
+    const double needed = rise / (rise > 0 ? near : reach);
+    if (!(slope_at(b, near) > needed)) return false;
+  }
+  return true;
+}
+
+bool SampleHorizon::hides_point(Vec2 p, double top) const {
+  const Vec2 v{p.x - sample_.x, p.y - sample_.y};
+  const double dist = std::hypot(v.x, v.y);
+  if (!(dist > 0)) return false;
+  const double a = std::atan2(v.y, v.x);
+  // A point on a sector border belongs to both sectors: test both.
+  for (double slack : {-kAngleSlack, kAngleSlack}) {
+    const int b = bin_of(static_cast<long long>(std::floor((a + slack) / kSector)));
+    if (!(slope_at(b, dist) * dist > top - sample_.z)) return false;
+  }
+  return true;
+}
+
+void SampleHorizon::add(const geometry::Occluder& occluder) {
+  if (!(occluder.top_z > sample_.z)) return;  // walls below the eye hide nothing rising
+  add_ring(occluder.shape.outer, occluder.top_z, false);
+  for (const geometry::Ring& h : occluder.shape.holes) add_ring(h, occluder.top_z, true);
+}
+
+// Closes sectors t0..t1 (unwrapped numbers) with the facing walls among edges k0..k1 of `ring`
+// (indices mod n; angle(k) is vertex k's unwrapped direction). Each sector gets the farthest
+// distance at which one of those walls crosses it: convex in the direction over a wall, so the
+// largest value over a sector's part of a wall lies at one of the part's ends. Sectors marked
+// with `skip_mark` are left alone; closed ones are marked with `mark`.
+template <class Angle>
+void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, std::size_t k1,
+                                  Angle&& angle, long long t0, long long t1, double top,
+                                  std::uint32_t skip_mark, std::uint32_t mark) {
+  const std::size_t n = ring.size();
+  const Vec2 s{sample_.x, sample_.y};
+  touched_.clear();
+  for (std::size_t k = k0; k <= k1; ++k) {
+    const Vec2 p = ring[k % n], q = ring[(k + 1) % n];
+    if (!faces(p, q, sample_)) continue;
+    const Vec2 e = q - p;
+    const double num = geometry::cross(p - s, e);
+    auto along = [&](Vec2 u) { return num / geometry::cross(u, e); };
+    const double a_lo = std::min(angle(k), angle(k + 1));
+    const double a_hi = std::max(angle(k), angle(k + 1));
+    const auto u0 = std::max(t0, static_cast<long long>(std::floor(a_lo / kSector)));
+    const auto u1 = std::min(t1, static_cast<long long>(std::floor(a_hi / kSector)));
+    if (u1 < u0) continue;
+    // Sector t spans [from, to] of this wall; `to` of one sector is `from` of the next.
+    double at_from = along(static_cast<double>(u0) * kSector < a_lo ? direction(a_lo) : border(u0));
+    auto b = static_cast<std::size_t>(bin_of(u0));
+    for (long long t = u0; t <= u1; ++t) {
+      const double at_to =
+          along(static_cast<double>(t + 1) * kSector > a_hi ? direction(a_hi) : border(t + 1));
+      if (sector_mark_[b] != skip_mark) {
+        if (reach_[b] == 0) touched_.push_back(static_cast<int>(b));
+        reach_[b] = std::max({reach_[b], at_from, at_to, 1e-300});
+      }
+      at_from = at_to;
+      b = b + 1 == static_cast<std::size_t>(kBins) ? 0 : b + 1;
+    }
+  }
+  const double rise = top - sample_.z;
+  for (int b : touched_) {
+    // Slightly farther than computed: the cos/sin and division above are a few ulps off.
+    const double r = reach_[static_cast<std::size_t>(b)] * (1 + 1e-9) + 1e-9;
+    reach_[static_cast<std::size_t>(b)] = 0;
+    sector_mark_[static_cast<std::size_t>(b)] = mark;
+    insert(b, Entry{r, rise / r});
+  }
+}
+
+// The sectors a run of facing walls over the unwrapped directions [lo, hi] closes, as t0..t1;
+// false when none: those wholly inside [lo, hi]. A run once around the sample (`around`: a
+// courtyard whose every wall faces it) closes every sector, the seam's too, and there the
+// sector holding the direction of the run's first vertex is crossed by the first wall at one end
+// of [lo, hi] and by the last wall at the other, a turn apart. Both parts must count: behind a
+// wall only what lies below its shadow plane is hidden (thesis 4.2.1), so a sector may claim a
+// wall only from the farthest crossing over all of its rays (the horizon of thesis 5.6, per
+// sector); one part alone would claim the nearer wall for rays that cross the farther one. So
+// a full run takes every sector any of its walls crosses, floor(lo) to floor(hi), the seam's
+// bin at both ends, and close_sectors keeps the farthest crossing per bin.
+bool inner_sectors(double lo, double hi, bool around, long long* t0, long long* t1) {
+  if (around || hi - lo >= 2 * std::numbers::pi) {
+    *t0 = static_cast<long long>(std::floor(lo / kSector));
+    *t1 = static_cast<long long>(std::floor(hi / kSector));
+    return true;
+  }
+  *t0 = static_cast<long long>(std::ceil((lo + kAngleSlack) / kSector));
+  *t1 = static_cast<long long>(std::floor((hi - kAngleSlack) / kSector)) - 1;
+  return *t1 >= *t0;
+}
+
+// A ring closes sectors in two ways (thesis 4.2.1: each wall the sight line crosses hides what
+// lies below its shadow plane):
+//  - a run of consecutive walls facing the sample turns one way around it, so the walls' angular
+//    intervals tile the run's interval: every ray in it crosses exactly one of them, and a
+//    sector inside it is closed from the farthest of those crossings, seams between the walls
+//    included (one wall alone would leave the sector at each corner open);
+//  - every ray from a sample outside the ring into the ring's whole angular extent crosses the
+//    ring, first entering it through some facing wall: sectors that no run closes (at concave
+//    corners, where runs meet) are closed from the farthest facing wall crossing them. Taken
+//    for every sector this would be loose where a ray leaves and re-enters a concave block.
+// A sample inside a ring (a courtyard: inside a hole) sees every ray leave through a facing wall
+// of the hole: one run around it.
+void SampleHorizon::add_ring(const geometry::Ring& ring, double top, bool hole) {
+  const std::size_t n = ring.size();
+  if (n < 3) return;
+  const Vec2 s{sample_.x, sample_.y};
+  // Vertex directions, unwrapped along the ring: angle_[k] for vertex k, angle_[n] = back at 0.
+  angle_.resize(n + 1);
+  const Vec2 v0 = ring[0] - s;
+  angle_[0] = std::atan2(v0.y, v0.x);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 a = ring[k] - s, b = ring[(k + 1) % n] - s;
+    angle_[k + 1] = angle_[k] + wrap_pi(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
+  }
+  const double turn = angle_[n] - angle_[0];
+  const bool around = std::abs(turn) > std::numbers::pi;  // winds around s
+  if (around != hole)
+    return;  // inside an outer ring is inside the occluder; outside a hole,
+             // the hole's walls lie behind the outer ring's
+  auto angle = [&](std::size_t k) { return k <= n ? angle_[k] : angle_[k - n] + turn; };
+  auto facing = [&](std::size_t k) { return faces(ring[k % n], ring[(k + 1) % n], sample_); };
+
+  if (++mark_ == kNoMark) {
+    std::fill(sector_mark_.begin(), sector_mark_.end(), 0u);
+    mark_ = 1;
+  }
+  const std::uint32_t by_run = mark_;
+  // Runs, from the first edge that starts one (all edges when every wall faces the sample).
+  std::size_t start = n;
+  for (std::size_t k = 0; k < n && start == n; ++k)
+    if (facing(k) && !facing(k + n - 1)) start = k;
+  if (start == n) start = 0;
+  int runs = 0;
+  for (std::size_t k = start; k < start + n;) {
+    if (!facing(k)) {
+      ++k;
+      continue;
+    }
+    const std::size_t first = k;
+    while (k < start + n && facing(k)) ++k;
+    ++runs;
+    const double a = angle(first), b = angle(k);
+    // Every wall faces the sample and the ring winds around it: the run tiles the full circle
+    // (its angle is monotone along the ring), whatever rounding makes of |b - a| - 2π.
+    const bool full = around && k - first == n;
+    long long t0, t1;
+    if (inner_sectors(std::min(a, b), std::max(a, b), full, &t0, &t1))
+      close_sectors(ring, first, k - 1, angle, t0, t1, top, kNoMark, by_run);
+  }
+  // The run around the sample closed everything; a single run spans the ring's whole extent.
+  if (around || runs <= 1) return;
+  const auto [lo, hi] = std::minmax_element(angle_.begin(), angle_.end());
+  long long t0, t1;
+  if (inner_sectors(*lo, *hi, false, &t0, &t1))
+    close_sectors(ring, 0, n - 1, angle, t0, t1, top, by_run, by_run);
+}
+
+}  // namespace urbanpvs::preprocess

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/preprocess/visibility/SightLine.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace urbanpvs::preprocess {
+
+bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tree,
+                        std::span<const geometry::Occluder> occluders, double margin) {
+  const Vec2 s{from.x, from.y}, d{to.x - from.x, to.y - from.y};
+  const double dz = to.z - from.z;
+  // The segment's lowest height over the part of it inside a box: nothing lower can block.
+  auto lowest_in = [&](const Box2& box, double* height) {
+    double t0, t1;
+    if (!geometry::clip_line_to_box(s, d, box, 1.0, &t0, &t1)) return false;
+    *height = from.z + std::min(t0 * dz, t1 * dz);
+    return true;
+  };
+  bool blocked = false;
+  tree.visit(
+      [&](std::uint32_t, const BoxQuadtree::Node& n) {
+        double low;
+        return !blocked && lowest_in(n.box.xy, &low) && n.box.zmax - margin > low;
+      },
+      [&](std::uint32_t item) {
+        if (blocked) return;
+        const geometry::Occluder& o = occluders[item];
+        double low;
+        if (!lowest_in(o.bounds, &low) || !(o.top_z - margin > low)) return;
+        geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
+          if (blocked) return;
+          const Vec2 e = b - a;
+          const double den = geometry::cross(d, e);
+          if (den == 0) return;
+          const double t = geometry::cross(a - s, e) / den;  // along the sight line
+          const double u = geometry::cross(a - s, d) / den;  // along the wall
+          if (t > 0 && t < 1 && u >= 0 && u <= 1 && from.z + t * dz < o.top_z - margin)
+            blocked = true;
+        });
+      });
+  return blocked;
+}
+
+}  // namespace urbanpvs::preprocess
