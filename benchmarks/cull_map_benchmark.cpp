@@ -6,9 +6,9 @@
 
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
-#include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
 #include "urbanpvs/preprocess/visibility/OsMesaCullMapRenderer.hpp"
 

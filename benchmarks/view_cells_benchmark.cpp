@@ -11,8 +11,8 @@
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
 #include "urbanpvs/geometry/cells/CellLocator.hpp"
-#include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
 
 namespace {
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // View cells as a refined constrained Delaunay triangulation of free space (thesis 5.3). Kept in
-// its own translation unit: CGAL's CDT and mesher take ~12 s and 850 MB to compile at -O2 (measured).
+// its own translation unit: CGAL's CDT and mesher take ~12 s and 850 MB to compile at -O2
+// (measured).
 //
 // Pass 1 inserts every footprint ring and every region ring as a polyline constraint, unchanged:
 // the triangulation splits them where they cross or touch, and free space is classified by

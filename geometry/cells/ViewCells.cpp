@@ -14,10 +14,10 @@
 #include "BoundarySimplification.hpp"
 #include "FreeSpaceTriangulation.hpp"
 #include "urbanpvs/geometry/cells/GroundHeight.hpp"
+#include "urbanpvs/geometry/cells/ViewCellSamples.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
 #include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
-#include "urbanpvs/geometry/city/RingCleanup.hpp"
-#include "urbanpvs/geometry/cells/ViewCellSamples.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

@@ -15,8 +15,8 @@
 
 #include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
-#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
 namespace urbanpvs::geometry::detail {
 namespace {

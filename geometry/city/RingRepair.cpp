@@ -12,8 +12,8 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 
 #include "WindingNumbers.hpp"
-#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
 namespace urbanpvs::geometry::detail {
 namespace {

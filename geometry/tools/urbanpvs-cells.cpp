@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "urbanpvs/geometry/city/CityReader.hpp"
-#include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/cells/SvgMap.hpp"
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/runtime/exit_codes.hpp"
 #include "urbanpvs/runtime/file_io.hpp"
 

@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <iostream>
 
-#include "urbanpvs/geometry/occluders/Blocks.hpp"
+#include "urbanpvs/geometry/cells/SvgMap.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
+#include "urbanpvs/geometry/occluders/Blocks.hpp"
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
-#include "urbanpvs/geometry/cells/SvgMap.hpp"
 #include "urbanpvs/runtime/exit_codes.hpp"
 #include "urbanpvs/runtime/file_io.hpp"
 

@@ -10,8 +10,8 @@
 #include <system_error>
 #include <utility>
 
-#include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
 #include "urbanpvs/preprocess/bake/BakeJournal.hpp"
 #include "urbanpvs/preprocess/bake/BakeProgress.hpp"

@@ -14,8 +14,8 @@
 #include <thread>
 
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
-#include "urbanpvs/preprocess/visibility/CullMap.hpp"
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
+#include "urbanpvs/preprocess/visibility/CullMap.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

@@ -8,11 +8,11 @@
 #include <random>
 #include <set>
 
-#include "urbanpvs/geometry/occluders/Blocks.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/occluders/Blocks.hpp"
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
-#include "urbanpvs/geometry/city/RingCleanup.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

@@ -34,8 +34,8 @@
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
-#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
 namespace {
 

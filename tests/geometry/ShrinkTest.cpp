@@ -8,8 +8,8 @@
 
 #include "PolygonTestShapes.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
-#include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

@@ -16,14 +16,14 @@
 #include "urbanpvs/cities/city_generator.hpp"
 #include "urbanpvs/cities/cityjson_writer.hpp"
 #include "urbanpvs/geometry/cells/CellLocator.hpp"
-#include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/cells/GroundHeight.hpp"
-#include "urbanpvs/geometry/city/InputError.hpp"
-#include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
-#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
 #include "urbanpvs/geometry/cells/ViewCellSamples.hpp"
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
+#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
 namespace urbanpvs::geometry {
 namespace {

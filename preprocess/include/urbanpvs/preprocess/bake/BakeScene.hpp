@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/geometry/occluders/Blocks.hpp"
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
-#include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/preprocess/visibility/CellMapRenderer.hpp"
 #include "urbanpvs/preprocess/visibility/CullMap.hpp"
 #include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
