@@ -47,33 +47,6 @@ std::vector<geometry::Box3> object_boxes(const std::vector<geometry::CityObject>
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& o) {
-  auto exact = [](double v) {
-    char text[64];
-    const auto result = std::to_chars(text, text + sizeof text, v);
-    return std::string(text, result.ptr);
-  };
-  return {
-      {"epsilon_m", exact(o.cells.epsilon)},
-      {"pixel_m", exact(o.pixel)},
-      {"max_cell_edge_m", exact(o.cells.max_cell_edge)},
-      {"eye_min_m", exact(o.cells.eye_min)},
-      {"eye_max_m", exact(o.cells.eye_max)},
-      {"margin_m", exact(o.cells.margin)},
-      {"narrow_gap_m", exact(o.cells.narrow_gap)},
-      {"snap_m", exact(o.cells.snap)},
-      {"min_cell_edge_m", exact(o.cells.min_cell_edge)},
-      {"gap_tolerance_m", exact(o.blocks.gap_tolerance)},
-      {"height_step_m", exact(o.blocks.height_step)},
-      {"backend", o.backend == Backend::Cpu ? "cpu" : "osmesa"},
-      {"method", o.method == Method::Hierarchical ? "hierarchical" : "brute-force"},
-      {"initial_map_px", std::to_string(o.initial_map)},
-      {"max_map_px", std::to_string(o.max_map)},
-      {"horizon_sectors", std::to_string(SampleHorizon::kBins)},
-      {"shrink_override_m", exact(o.shrink_override)},
-  };
-}
-
 void BakeOptions::validate() const {
   CullMapSettings{cells.epsilon, pixel}.validate();
   geometry::validate(cells);

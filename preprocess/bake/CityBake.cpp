@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "urbanpvs/preprocess/bake/CityBake.hpp"
 
+#include "urbanpvs/preprocess/bake/BakeSettings.hpp"
+
 namespace urbanpvs::preprocess {
 
 runtime::PvsBake bake_city(const geometry::City& city, const BakeOptions& options, BakeStats* stats,

@@ -29,14 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 constexpr const char* kPrefix = "urbanpvs-preprocess: ";
 
-// Shortest text that reads back as the same double: equal settings give equal strings (and so
-// equal fingerprints), different ones different strings.
-std::string exact(double v) {
-  char text[64];
-  const auto result = std::to_chars(text, text + sizeof text, v);
-  return std::string(text, result.ptr);
-}
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -281,21 +273,14 @@ int Run::execute() {
 
 std::vector<std::pair<std::string, std::string>> result_settings(const PreprocessRequest& r,
                                                                  std::uint64_t region_hash) {
-  const char* coordinates[] = {"auto", "geographic", "projected"};
+  // The table's result settings (bake_properties first, as bake_city stores them, then the
+  // reading options), and the region file by name and content.
   std::vector<std::pair<std::string, std::string>> out{
       {"tool", std::string("urbanpvs-preprocess ") + URBANPVS_VERSION}};
-  for (auto& property : bake_properties(r.bake)) out.push_back(std::move(property));
-  out.insert(
-      out.end(),
-      {
-          {"region", r.region_file.empty() ? "none" : fs::path(r.region_file).filename().string()},
-          {"region_hash", r.region_file.empty() ? "none" : hex64(region_hash)},
-          {"default_height_m", r.read.default_height ? exact(*r.read.default_height) : "none"},
-          {"level_height_m", exact(r.read.level_height)},
-          {"coordinates", coordinates[static_cast<int>(r.read.coordinates)]},
-          {"strict", r.read.strict ? "true" : "false"},
-          {"max_height_m", exact(r.read.max_height)},
-      });
+  for (auto& property : request_properties(r)) out.push_back(std::move(property));
+  out.emplace_back("region",
+                   r.region_file.empty() ? "none" : fs::path(r.region_file).filename().string());
+  out.emplace_back("region_hash", r.region_file.empty() ? "none" : hex64(region_hash));
   return out;
 }
 

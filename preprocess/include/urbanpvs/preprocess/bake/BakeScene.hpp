@@ -45,11 +45,6 @@ struct BakeOptions {
   void validate() const;
 };
 
-/// Every bake option that changes the result, as (key, value) text in a fixed order, numbers as
-/// the shortest text that reads back to the same double. Stored in the output file's properties
-/// (BakeScene::pvs_file) and part of urbanpvs-preprocess's journal fingerprint.
-std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& options);
-
 class BakeScene {
  public:
   /// Throws std::invalid_argument for invalid options (geometry errors propagate).

@@ -11,6 +11,7 @@
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/preprocess/bake/BakeScene.hpp"
+#include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/runtime/exit_codes.hpp"
 
 namespace urbanpvs::preprocess {
@@ -22,19 +23,6 @@ inline constexpr int kExitProcessing = exit_code::kProcessing;  ///< the bake it
 inline constexpr int kExitOutput = exit_code::kOutput;  ///< output, journal or report unwritable
 static_assert(int(geometry::InputProblem::Unreadable) == exit_code::kCityInputFirst &&
               int(geometry::InputProblem::Implausible) == exit_code::kCityInputLast);
-
-/// Everything one run needs.
-struct PreprocessRequest {
-  std::vector<std::string> inputs;  ///< city files (CityJSON, GeoJSON), one coordinate system
-  std::string output;               ///< the .pvs file; the journal is output + ".journal"
-  geometry::ReadOptions read;
-  BakeOptions bake;         ///< bake.cells.region is filled from region_file by the run
-  std::string region_file;  ///< GeoJSON polygons in the city's CRS; empty: the default region
-  unsigned threads = 1;     ///< [Limit: 1 .. 1024]
-  std::string report_file;  ///< JSON report; empty: none
-  bool resume = false;      ///< continue from the journal when there is one
-  bool quiet = false;       ///< no progress and no summary (errors are still printed)
-};
 
 /// Parses urbanpvs-preprocess's command line, merging the --config file it names (the command
 /// line wins). Returns the exit code when the program should stop here (0 after --help, 2 after

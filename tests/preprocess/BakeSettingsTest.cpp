@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The settings table (BakeSettings.hpp) is the only place a setting is written: every entry is
+// an option of --help, a key of --config, a property of the file (when it changes the result)
+// and a row of the README's option table; and a value set through any of them reads back.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "urbanpvs/preprocess/bake/BakeSettings.hpp"
+#include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
+
+namespace fs = std::filesystem;
+using namespace urbanpvs::preprocess;
+
+namespace {
+
+const std::string kCity = std::string(URBANPVS_SOURCE_DIR) + "/cities/sample/district.city.json";
+
+std::optional<int> parse(std::vector<std::string> args, PreprocessRequest& r) {
+  args.insert(args.begin(), "urbanpvs-preprocess");
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  return parse_preprocess_command_line(int(argv.size()), argv.data(), r);
+}
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The setting's default as a value of a --config file.
+nlohmann::json json_value(const Setting& s, const std::string& text) {
+  switch (s.kind) {
+    case SettingKind::Number:
+    case SettingKind::Integer:
+      return std::stod(text);
+    case SettingKind::Flag:
+      return text == "true";
+    default:
+      return text;
+  }
+}
+
+bool has_file_default(const Setting& s) {
+  return s.kind == SettingKind::Path || s.key == "default-height";  // "none" is no value
+}
+
+}  // namespace
+
+TEST(BakeSettings, EverySettingIsAnOptionOfHelp) {
+  PreprocessRequest r;
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(parse({"--help"}, r), 0);
+  std::cout.flush();
+  const std::string help = testing::internal::GetCapturedStdout();
+  for (const Setting& s : bake_settings()) {
+    EXPECT_NE(help.find("--" + s.key + " "), std::string::npos) << s.key << " is not in --help";
+    EXPECT_NE(help.find(s.help.substr(0, 30)), std::string::npos) << s.key << ": help text";
+  }
+}
+
+TEST(BakeSettings, EverySettingIsAConfigKeyAndTheCommandLineWins) {
+  PreprocessRequest defaults;
+  ASSERT_EQ(parse({kCity, "-o", "x.pvs"}, defaults), std::nullopt);
+  const fs::path config =
+      fs::temp_directory_path() / ("urbanpvs_settings_" + std::to_string(::getpid()) + ".json");
+  for (const Setting& s : bake_settings()) {
+    if (has_file_default(s)) continue;
+    SCOPED_TRACE(s.key);
+    // The value each setting has by default, given in a config alone: accepted, same request.
+    std::ofstream(config) << nlohmann::json{{s.key, json_value(s, s.get(defaults))}}.dump();
+    PreprocessRequest r;
+    ASSERT_EQ(parse({kCity, "-o", "x.pvs", "--config", config.string()}, r), std::nullopt);
+    for (const Setting& t : bake_settings()) EXPECT_EQ(t.get(r), t.get(defaults)) << t.key;
+  }
+  // A config value is used unless the command line gives one.
+  std::ofstream(config) << R"({"max_cell_edge": 25, "eye-band": "0.5:1.5", "method": "brute-force",
+                              "strict": true, "initial-map": 64})";
+  PreprocessRequest r;
+  ASSERT_EQ(parse({kCity, "-o", "x.pvs", "--config", config.string(), "--initial-map", "32"}, r),
+            std::nullopt);
+  EXPECT_EQ(r.bake.cells.max_cell_edge, 25);
+  EXPECT_EQ(r.bake.cells.eye_min, 0.5);
+  EXPECT_EQ(r.bake.cells.eye_max, 1.5);
+  EXPECT_EQ(r.bake.method, Method::BruteForce);
+  EXPECT_TRUE(r.read.strict);
+  EXPECT_EQ(r.bake.initial_map, 32);
+  fs::remove(config);
+}
+
+TEST(BakeSettings, OutOfLimitsIsRefusedWithTheOptionsName) {
+  for (const Setting& s : bake_settings()) {
+    if (s.kind != SettingKind::Number && s.kind != SettingKind::Integer) continue;
+    SCOPED_TRACE(s.key);
+    PreprocessRequest r;
+    for (double bad : {s.min - 1, s.max * 2 + 1}) {
+      try {
+        s.set(r, std::to_string(bad));
+        ADD_FAILURE() << bad << " was accepted";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("--" + s.key + " must be " + s.limits_text()),
+                  std::string::npos)
+            << e.what();
+      }
+    }
+  }
+}
+
+TEST(BakeSettings, EveryResultSettingIsAPropertyOfTheFile) {
+  PreprocessRequest r;
+  ASSERT_EQ(parse({kCity, "-o", "x.pvs"}, r), std::nullopt);
+  const auto stored = result_settings(r, 0);
+  auto has = [&](const std::string& key) {
+    for (const auto& [k, v] : stored)
+      if (k == key) return true;
+    return false;
+  };
+  for (const Setting& s : bake_settings()) {
+    SCOPED_TRACE(s.key);
+    EXPECT_EQ(has(s.property_key()), s.changes_result());
+  }
+}
+
+TEST(BakeSettings, TheReadmeHasTheGeneratedTable) {
+  const std::string readme = text_of(fs::path(URBANPVS_SOURCE_DIR) / "README.md");
+  const std::string table = settings_markdown();
+  EXPECT_NE(readme.find(table), std::string::npos)
+      << "README.md's option table is out of date; the table is now:\n"
+      << table;
+  for (const Setting& s : bake_settings())
+    EXPECT_NE(readme.find("| `--" + s.key + "` |"), std::string::npos) << s.key;
+}
