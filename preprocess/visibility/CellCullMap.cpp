@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "urbanpvs/preprocess/visibility/CpuRasterizer.hpp"
-#include "urbanpvs/preprocess/visibility/ObjectTest.hpp"
+#include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 
 namespace urbanpvs::preprocess {
 

@@ -5,7 +5,7 @@
 #include <tuple>
 
 #include "urbanpvs/preprocess/visibility/CullMapHorizon.hpp"
-#include "urbanpvs/preprocess/visibility/ObjectTest.hpp"
+#include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
 #include "urbanpvs/preprocess/visibility/SightLine.hpp"
 

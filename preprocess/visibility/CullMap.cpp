@@ -38,4 +38,16 @@ void CullMap::fill(float value) {
   std::fill(z_.begin(), z_.end(), value);
 }
 
+bool outside_map(const CullMapGrid& grid, const Box2& box) {
+  const Box2 m = grid.bounds();
+  return box.max.x <= m.min.x || box.min.x >= m.max.x || box.max.y <= m.min.y ||
+         box.min.y >= m.max.y;
+}
+
+bool inside_map(const CullMapGrid& grid, const Box2& box) {
+  const Box2 m = grid.bounds();
+  return box.min.x >= m.min.x && box.max.x <= m.max.x && box.min.y >= m.min.y &&
+         box.max.y <= m.max.y;
+}
+
 }  // namespace urbanpvs::preprocess

@@ -57,18 +57,6 @@ std::optional<std::pair<double, double>> hull_on_line(const std::array<Vec2, N>&
 
 }  // namespace
 
-bool outside_map(const CullMapGrid& grid, const Box2& box) {
-  const Box2 m = grid.bounds();
-  return box.max.x <= m.min.x || box.min.x >= m.max.x || box.max.y <= m.min.y ||
-         box.min.y >= m.max.y;
-}
-
-bool inside_map(const CullMapGrid& grid, const Box2& box) {
-  const Box2 m = grid.bounds();
-  return box.min.x >= m.min.x && box.max.x <= m.max.x && box.min.y >= m.min.y &&
-         box.max.y <= m.max.y;
-}
-
 bool hidden_behind_horizon(const CullMap& map, const CellBox& cell, const geometry::Box3& box) {
   const CullMapGrid& g = map.grid();
   if (box.xy.empty() || !outside_map(g, box.xy) || !inside_map(g, cell.xy)) return false;

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
-#include "urbanpvs/preprocess/visibility/ObjectTest.hpp"
+#include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

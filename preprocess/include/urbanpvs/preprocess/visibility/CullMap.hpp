@@ -107,4 +107,9 @@ inline float float_below(double z) {
   return f;
 }
 
+/// True when `box` lies entirely outside the interior of the map's area.
+bool outside_map(const CullMapGrid& grid, const Box2& box);
+/// True when `box` lies entirely inside the map's area.
+bool inside_map(const CullMapGrid& grid, const Box2& box);
+
 }  // namespace urbanpvs::preprocess

@@ -24,9 +24,4 @@ struct CellBox {
 /// the channel crosses.
 bool hidden_behind_horizon(const CullMap& map, const CellBox& cell, const geometry::Box3& box);
 
-/// True when `box` lies entirely outside the interior of the map's area.
-bool outside_map(const CullMapGrid& grid, const Box2& box);
-/// True when `box` lies entirely inside the map's area.
-bool inside_map(const CullMapGrid& grid, const Box2& box);
-
 }  // namespace urbanpvs::preprocess

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "urbanpvs/preprocess/visibility/ObjectTest.hpp"
+#include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 
 #include <cmath>
 
