@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
-#include "urbanpvs/preprocess/visibility/CellCounterFields.hpp"
+#include "urbanpvs/preprocess/visibility/CellCounters.hpp"
 #include "urbanpvs/runtime/crc32c.hpp"
 
 namespace urbanpvs::preprocess {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
-#include "urbanpvs/preprocess/visibility/CellCounterFields.hpp"
+#include "urbanpvs/preprocess/visibility/CellCounters.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
