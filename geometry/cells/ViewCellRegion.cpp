@@ -120,16 +120,7 @@ std::vector<Polygon> read_region_text(std::string_view text, const std::string& 
 }
 
 std::vector<Polygon> read_region_file(const std::string& path, const LocalFrame& frame) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(InputProblem::Unreadable, path, "",
-                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputProblem::Unreadable, path, "", "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(InputProblem::Unreadable, path, "", "read failed");
-  return read_region_text(text.str(), path, frame);
+  return read_region_text(detail::read_input_file(path), path, frame);
 }
 
 }  // namespace urbanpvs::geometry

@@ -77,6 +77,19 @@ bool is_geographic_crs(const std::string& c) {
   return c == "OGC:CRS84" || c == "EPSG:4326" || c == "EPSG:4979";
 }
 
+std::string read_input_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(InputProblem::Unreadable, path, "",
+                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(InputProblem::Unreadable, path, "", "cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw InputError(InputProblem::Unreadable, path, "", "read failed");
+  return s.str();
+}
+
 }  // namespace detail
 
 namespace {
@@ -293,25 +306,12 @@ struct Reader {
   }
 };
 
-std::string slurp(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(InputProblem::Unreadable, path, "",
-                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputProblem::Unreadable, path, "", "cannot open file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw InputError(InputProblem::Unreadable, path, "", "read failed");
-  return s.str();
-}
-
 }  // namespace
 
 City read_city(const std::vector<std::string>& paths, const ReadOptions& options) {
   if (paths.empty()) throw InputError(InputProblem::EmptyCity, "(no file)", "", "no input file");
   Reader reader{options, {}, {}, {}};
-  for (const std::string& p : paths) reader.add(parse(slurp(p), p), p);
+  for (const std::string& p : paths) reader.add(parse(detail::read_input_file(p), p), p);
   return reader.finish(paths.back());
 }
 

@@ -23,6 +23,10 @@ struct InputScan {
 
 /// Normalises a CRS name or URL (OGC URL, URN, "EPSG:n") to "EPSG:n" or "OGC:CRS84"; throws
 /// InputError(UnknownCrs) for anything else.
+/// The whole file; InputError (Unreadable) naming it when it is missing, not a regular file or
+/// cannot be read.
+std::string read_input_file(const std::string& path);
+
 std::string normalise_crs(const std::string& name, const std::string& file);
 bool is_geographic_crs(const std::string& normalised);
 
