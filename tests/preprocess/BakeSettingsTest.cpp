@@ -13,6 +13,7 @@
 
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
+#include "urbanpvs/preprocess/visibility/CullMap.hpp"
 
 namespace fs = std::filesystem;
 using namespace urbanpvs::preprocess;
@@ -136,4 +137,27 @@ TEST(BakeSettings, TheReadmeHasTheGeneratedTable) {
       << table;
   for (const Setting& s : bake_settings())
     EXPECT_NE(readme.find("| `--" + s.key + "` |"), std::string::npos) << s.key;
+}
+
+// The table's limits of the occluder and cell settings are checked again by the stages that own
+// them (geometry::validate, BakeOptions::validate, for library callers): the owners accept the
+// table's whole range, so the table never promises a value that a stage then refuses.
+TEST(BakeSettings, TheStagesAcceptTheTablesWholeRange) {
+  for (const Setting& s : bake_settings()) {
+    if (s.kind != SettingKind::Number && s.kind != SettingKind::Integer) continue;
+    if (s.stage != SettingStage::Occluders && s.stage != SettingStage::Cells &&
+        s.stage != SettingStage::Visibility)
+      continue;
+    for (double v : {s.min, s.max}) {
+      SCOPED_TRACE(s.key + " = " + std::to_string(v));
+      PreprocessRequest r;
+      if (s.key == "max-map") r.bake.initial_map = 8;      // max-map >= initial-map
+      if (s.key == "initial-map") r.bake.max_map = 65536;  // initial-map <= max-map
+      ASSERT_NO_THROW(s.set(r, std::to_string(v)));
+      r.bake.cells.gap = r.bake.blocks.gap_tolerance;  // as BakeScene hands it on
+      if (s.key != "pixel") r.bake.pixel = CullMapSettings::max_pixel(r.bake.cells.epsilon);
+      if (s.key == "pixel") r.bake.cells.epsilon = 1000;  // the largest pixel needs a large ε
+      EXPECT_NO_THROW(r.bake.validate());
+    }
+  }
 }
