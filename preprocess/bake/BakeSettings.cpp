@@ -9,12 +9,6 @@
 namespace urbanpvs::preprocess {
 namespace {
 
-std::string exact(double v) {
-  char text[64];
-  const auto result = std::to_chars(text, text + sizeof text, v);
-  return std::string(text, result.ptr);
-}
-
 [[noreturn]] void refuse(const Setting& s, const std::string& what, const std::string& text) {
   throw std::invalid_argument("--" + s.key + " " + what + ", got \"" + text + "\"");
 }
@@ -238,6 +232,12 @@ std::vector<Setting> make_table() {
 }
 
 }  // namespace
+
+std::string exact(double v) {
+  char text[64];
+  const auto result = std::to_chars(text, text + sizeof text, v);
+  return std::string(text, result.ptr);
+}
 
 std::string Setting::property_key() const {
   std::string k = key;

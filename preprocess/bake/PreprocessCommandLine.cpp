@@ -4,7 +4,6 @@
 // is reported the same way wherever it came from.
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -73,9 +72,7 @@ std::string config_text(const Setting& s, const nlohmann::json& value, const std
     case SettingKind::Integer: {
       if (!value.is_number()) throw wrong("a number");
       if (value.is_number_integer()) return std::to_string(value.get<std::int64_t>());
-      char text[64];
-      const auto r = std::to_chars(text, text + sizeof text, value.get<double>());
-      return std::string(text, r.ptr);
+      return exact(value.get<double>());
     }
     case SettingKind::Flag:
       if (!value.is_boolean()) throw wrong("true or false");

@@ -68,6 +68,10 @@ struct Setting {
   std::string limits_text() const;
 };
 
+/// The shortest text that reads back to the same double: equal settings give equal text (and so
+/// equal fingerprints), different ones different text.
+std::string exact(double v);
+
 /// Every setting, in the order of the pipeline's stages.
 const std::vector<Setting>& bake_settings();
 /// The setting with this key (underscores read as dashes); nullptr when there is none.
