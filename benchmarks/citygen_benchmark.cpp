@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
 
 namespace {
 

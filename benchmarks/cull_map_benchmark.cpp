@@ -4,8 +4,8 @@
 // pixels written, ms per sample.
 #include <benchmark/benchmark.h>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
@@ -44,7 +44,7 @@ const Scene& scene() {
       if (d < best_d) best = i, best_d = d;
     }
     for (std::uint32_t e : mesh.cells[best].edge)
-      for (const geometry::Point3& q : mesh.samples_of(mesh.edges[e]))
+      for (const geometry::Vec3& q : mesh.samples_of(mesh.edges[e]))
         out.samples.push_back({q.x, q.y, q.z});
     out.grid = preprocess::CullMapGrid::covering(b.grown(10), 1.39);
     return out;

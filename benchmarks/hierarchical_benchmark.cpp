@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/preprocess/bake/BakeScene.hpp"
 #include "urbanpvs/preprocess/visibility/CellVisibility.hpp"

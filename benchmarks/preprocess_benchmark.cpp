@@ -21,8 +21,8 @@
 #include <sstream>
 #include <thread>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 
 namespace {

@@ -15,9 +15,9 @@
 #include <map>
 #include <random>
 
-#include "synthetic_city.hpp"
-#include "urbanpvs/runtime/format.hpp"
-#include "urbanpvs/runtime/pvs_file.hpp"
+#include "SyntheticCity.hpp"
+#include "urbanpvs/runtime/Format.hpp"
+#include "urbanpvs/runtime/PvsFile.hpp"
 
 namespace {
 

@@ -6,5 +6,5 @@ find_package(CLI11 REQUIRED)                        # command lines
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(GeographicLib REQUIRED IMPORTED_TARGET geographiclib)  # WGS84 -> local metric frame
 pkg_check_modules(OSMesa REQUIRED IMPORTED_TARGET osmesa)               # off-screen cull maps
-find_package(glm REQUIRED)
+find_package(glm REQUIRED)                          # the 2D and 3D vector types
 

@@ -5,7 +5,7 @@
 
 namespace urbanpvs::geometry {
 
-std::size_t top_edge_sample_count(const Point3& a, const Point3& b, double epsilon) {
+std::size_t top_edge_sample_count(const Vec3& a, const Vec3& b, double epsilon) {
   const double length =
       std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y) + (b.z - a.z) * (b.z - a.z));
   // Spacing length / n <= 2ε puts every point of the edge within ε of a sample.
@@ -13,7 +13,7 @@ std::size_t top_edge_sample_count(const Point3& a, const Point3& b, double epsil
   return static_cast<std::size_t>(std::max(1.0, steps)) + 1;
 }
 
-void sample_top_edge(const Point3& a, const Point3& b, double epsilon, std::vector<Point3>& out) {
+void sample_top_edge(const Vec3& a, const Vec3& b, double epsilon, std::vector<Vec3>& out) {
   const std::size_t n = top_edge_sample_count(a, b, epsilon) - 1;
   out.push_back(a);
   for (std::size_t i = 1; i < n; ++i) {

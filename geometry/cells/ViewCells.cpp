@@ -15,19 +15,13 @@
 #include "FreeSpaceTriangulation.hpp"
 #include "urbanpvs/geometry/cells/GroundHeight.hpp"
 #include "urbanpvs/geometry/cells/ViewCellSamples.hpp"
+#include "urbanpvs/geometry/cells/ViewCellSettings.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
 #include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
 namespace urbanpvs::geometry {
 namespace {
-
-void check_range(const char* name, double value, double lo, double hi) {
-  if (!(value >= lo && value <= hi))
-    throw std::invalid_argument("ViewCellOptions." + std::string(name) + " = " +
-                                std::to_string(value) + " is outside [" + std::to_string(lo) +
-                                ", " + std::to_string(hi) + "]");
-}
 
 bool lexicographically_less(Vec2 a, Vec2 b) {
   return a.x < b.x || (a.x == b.x && a.y < b.y);
@@ -71,15 +65,8 @@ std::vector<Polygon> cleaned_obstacles(const City& city, const ViewCellOptions& 
 }  // namespace
 
 void validate(const ViewCellOptions& o) {
-  check_range("max_cell_edge", o.max_cell_edge, 0.5, 1e4);
-  check_range("eye_max", o.eye_max, 0.0, 1e3);
-  check_range("eye_min", o.eye_min, 0.0, o.eye_max);
-  check_range("margin", o.margin, 0.0, 1e5);
-  check_range("epsilon", o.epsilon, 0.01, 1e3);
-  check_range("narrow_gap", o.narrow_gap, 0.0, 1.0);
-  check_range("gap", o.gap, 0.0, 10.0);
-  check_range("snap", o.snap, 0.0, 10.0);
-  check_range("min_cell_edge", o.min_cell_edge, 0.0, 1e4);
+  // The limits are the settings table's, the ones the command lines enforce.
+  check_limits(view_cell_settings(), o);
   for (std::size_t i = 0; i < o.region.size(); ++i) {
     bool finite = true;
     for_each_edge(o.region[i], [&](Vec2 a, Vec2) { finite = finite && std::isfinite(a.x + a.y); });
@@ -196,8 +183,8 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
       // the ground would leave viewpoints up to zmax above the samples. An edge shared by two
       // cells takes the higher top: a higher viewpoint sees a superset over 2.5D occluders.
       const double top = n >= 0 ? std::max(cell.zmax, mesh.cells[std::size_t(n)].zmax) : cell.zmax;
-      const Point3 pa{mesh.vertices[a].x, mesh.vertices[a].y, top};
-      const Point3 pb{mesh.vertices[b].x, mesh.vertices[b].y, top};
+      const Vec3 pa{mesh.vertices[a].x, mesh.vertices[a].y, top};
+      const Vec3 pb{mesh.vertices[b].x, mesh.vertices[b].y, top};
       sample_top_edge(pa, pb, options.epsilon, mesh.samples);
       if (mesh.samples.size() > std::numeric_limits<std::uint32_t>::max())
         throw std::invalid_argument("ViewCellOptions.epsilon = " + std::to_string(options.epsilon) +

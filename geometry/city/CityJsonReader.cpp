@@ -21,7 +21,7 @@
 namespace urbanpvs::geometry::detail {
 namespace {
 
-using Vertex = std::array<double, 3>;
+using Vertex = Vec3;
 
 // A part whose bottom floats this far (m) above its building's lowest point is raised (a bridge,
 // an upper storey on columns): the space below it is open, so it yields no ground-based occluder.
@@ -239,8 +239,8 @@ std::vector<Vertex> ring_vertices(const CityJsonFile& f, const Json& ring, const
   return r;
 }
 
-std::array<double, 3> newell_normal(const std::vector<Vertex>& r) {
-  std::array<double, 3> n{0, 0, 0};
+Vec3 newell_normal(const std::vector<Vertex>& r) {
+  Vec3 n{0, 0, 0};
   for (std::size_t i = 0; i < r.size(); ++i) {
     const Vertex& a = r[i];
     const Vertex& b = r[(i + 1) % r.size()];
@@ -251,13 +251,9 @@ std::array<double, 3> newell_normal(const std::vector<Vertex>& r) {
   return n;
 }
 
-double length3(const std::array<double, 3>& v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
 bool is_vertical(const std::vector<Vertex>& outer) {
   const auto n = newell_normal(outer);
-  const double len = length3(n);
+  const double len = glm::length(n);
   return len == 0 || std::abs(n[2]) < 0.05 * len;
 }
 
@@ -294,7 +290,7 @@ Classified::Kind classify(const std::string& semantic, const std::vector<Vertex>
   if (!semantic.empty()) return is_vertical(outer) ? Classified::Other : Classified::Top;
   // No semantics: decide by shape and position, not by the normal's sign, which files get wrong.
   const auto n = newell_normal(outer);
-  const double len = length3(n);
+  const double len = glm::length(n);
   if (len == 0 || std::abs(n[2]) < 0.05 * len) return Classified::Wall;
   double zmax = -1e300;
   for (const Vertex& v : outer) zmax = std::max(zmax, v[2]);
@@ -465,8 +461,8 @@ bool outline_on_walls(const std::vector<Polygon>& plan, const std::vector<WallPl
 std::vector<Polygon> wall_outline(const PartResult& part) {
   using Key = std::array<double, 6>;
   auto key = [](const Vertex& a, const Vertex& b) {
-    return a < b ? Key{a[0], a[1], a[2], b[0], b[1], b[2]}
-                 : Key{b[0], b[1], b[2], a[0], a[1], a[2]};
+    return lexicographic_less(a, b) ? Key{a[0], a[1], a[2], b[0], b[1], b[2]}
+                                    : Key{b[0], b[1], b[2], a[0], a[1], a[2]};
   };
   std::map<Key, int> uses;
   for (const Classified& c : part.faces)
@@ -476,13 +472,13 @@ std::vector<Polygon> wall_outline(const PartResult& part) {
   for (const Classified* c : part.of_kind(Classified::Wall)) {
     const auto& r = c->rings.front();  // holes are openings: their top edges are no feet
     const auto n = newell_normal(r);
-    const double nlen = length3(n);
+    const double nlen = glm::length(n);
     for (std::size_t i = 0; i < r.size(); ++i) {
       const Vertex &a = r[i], &b = r[(i + 1) % r.size()];
-      const std::array<double, 3> e{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+      const Vec3 e = b - a;
       // n x e points into the face: up for an edge the wall stands on.
       const double inward_z = n[0] * e[1] - n[1] * e[0];
-      if (inward_z <= 0.3 * nlen * length3(e) || uses[key(a, b)] != 1) continue;
+      if (inward_z <= 0.3 * nlen * glm::length(e) || uses[key(a, b)] != 1) continue;
       const Vec2 p{a[0], a[1]}, q{b[0], b[1]};
       if (!(p == q)) feet.emplace_back(p, q);
     }

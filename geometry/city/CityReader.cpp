@@ -172,7 +172,7 @@ class TerrainUnder {
   }
 
  private:
-  using V3 = std::array<double, 3>;
+  using V3 = Vec3;
 
   // The TIN's height at q, or nullopt off the TIN.
   std::optional<double> at(Vec2 q) const {

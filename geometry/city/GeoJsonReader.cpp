@@ -252,7 +252,7 @@ std::optional<double> feature_height(Feature& f, const ReadOptions& options, Rea
 void add_prism_surfaces(const Polygon& p, double base, double top, bool blocks, bool bottom,
                         std::vector<Surface3>& out) {
   auto ring3 = [](const Ring& r, double z) {
-    std::vector<std::array<double, 3>> v;
+    std::vector<Vec3> v;
     for (Vec2 q : r) v.push_back({q.x, q.y, z});
     return v;
   };

@@ -32,14 +32,14 @@ LocalFrameMapping::LocalFrameMapping(const LocalFrame& frame) : frame_(frame) {
 
 LocalFrameMapping::~LocalFrameMapping() = default;
 
-std::array<double, 3> LocalFrameMapping::to_local(double x, double y, double z) const {
+Vec3 LocalFrameMapping::to_local(double x, double y, double z) const {
   if (!geodesy_) return {x - frame_.origin[0], y - frame_.origin[1], z - frame_.origin[2]};
   double e = 0, n = 0, u = 0;
   geodesy_->enu.Forward(y, x, z, e, n, u);
   return {e, n, z};
 }
 
-std::array<double, 3> LocalFrameMapping::to_input(double x, double y, double z) const {
+Vec3 LocalFrameMapping::to_input(double x, double y, double z) const {
   if (!geodesy_) return {x + frame_.origin[0], y + frame_.origin[1], z + frame_.origin[2]};
   // Invert the horizontal part at the curvature-corrected height that Forward would produce.
   double lat = 0, lon = 0, h = 0;

@@ -10,11 +10,14 @@
 
 #include "urbanpvs/geometry/cells/SvgMap.hpp"
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
+#include "urbanpvs/geometry/cells/ViewCellSettings.hpp"
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
-#include "urbanpvs/runtime/exit_codes.hpp"
-#include "urbanpvs/runtime/file_io.hpp"
+#include "urbanpvs/geometry/city/ReadSettings.hpp"
+#include "urbanpvs/geometry/settings/SettingOptions.hpp"
+#include "urbanpvs/runtime/ExitCodes.hpp"
+#include "urbanpvs/runtime/FileIo.hpp"
 
 namespace {
 
@@ -23,20 +26,6 @@ using namespace urbanpvs::geometry;
 constexpr int kExitUsage = urbanpvs::exit_code::kUsage;
 constexpr int kExitProcessing = urbanpvs::exit_code::kProcessing;
 constexpr int kExitOutput = urbanpvs::exit_code::kOutput;
-
-// "MIN:MAX" in metres.
-bool parse_band(const std::string& s, double& lo, double& hi) {
-  const auto colon = s.find(':');
-  if (colon == std::string::npos) return false;
-  try {
-    std::size_t n1 = 0, n2 = 0;
-    lo = std::stod(s.substr(0, colon), &n1);
-    hi = std::stod(s.substr(colon + 1), &n2);
-    return n1 == colon && n2 == s.size() - colon - 1;
-  } catch (const std::exception&) {
-    return false;
-  }
-}
 
 void print_summary(const ViewCellMesh& m, double read_seconds) {
   double lmin = 1e300, lmax = 0, lsum = 0, amin = 180;
@@ -96,42 +85,22 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   ReadOptions read;
   ViewCellOptions options;
-  double default_height = 0;
-  std::string band, region, svg;
+  std::string region, svg;
   app.add_option("files", files, "City files")->required()->check(CLI::ExistingFile);
-  app.add_option("--max-cell-edge", options.max_cell_edge, "Longest cell edge in m")
-      ->capture_default_str();
-  app.add_option("--eye-band", band, "Eye band above the ground in m, MIN:MAX (default 0:2)");
-  app.add_option("--margin", options.margin, "Margin around the buildings in m")
-      ->capture_default_str();
-  app.add_option("--epsilon", options.epsilon, "Sample spacing on top edges: 2*epsilon, in m")
-      ->capture_default_str();
-  app.add_option("--narrow-gap", options.narrow_gap,
-                 "Leave out slivers of free space thinner than this along walls (m; 0: none)")
-      ->capture_default_str();
-  app.add_option("--snap", options.snap,
-                 "Free space's boundary is cleaned within this many m (near-duplicate points, "
-                 "walls closer than it)")
-      ->capture_default_str();
-  app.add_option("--min-cell-edge", options.min_cell_edge,
-                 "Cells whose shortest edge is below this many m are not refined for shape")
-      ->capture_default_str();
-  app.add_option("--gap", options.gap, "Footprints closer than this many m fuse")
-      ->capture_default_str();
+  // The reading and view-cell options of the bake, from the stages' own tables.
+  const SettingOptions<ReadOptions> read_options(app, read_settings());
+  const SettingOptions<ViewCellOptions> cell_options(app, view_cell_settings());
   app.add_option("--region", region, "GeoJSON Polygon/MultiPolygon to subdivide (city's CRS)")
       ->check(CLI::ExistingFile);
-  app.add_option("--default-height", default_height,
-                 "Height in m for GeoJSON buildings without height attributes");
   app.add_option("--svg", svg, "Write a map of the cells over the footprints");
   try {
     app.parse(argc, argv);
-    if (!band.empty() && !parse_band(band, options.eye_min, options.eye_max))
-      throw CLI::ValidationError("--eye-band", "expects MIN:MAX in metres, got " + band);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : kExitUsage;
   }
-  if (default_height > 0) read.default_height = default_height;
   try {
+    read_options.apply(read);
+    cell_options.apply(options);
     validate(options);
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());

@@ -7,13 +7,17 @@
 #include <iostream>
 
 #include "urbanpvs/geometry/cells/SvgMap.hpp"
+#include "urbanpvs/geometry/cells/ViewCellSettings.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
+#include "urbanpvs/geometry/city/ReadSettings.hpp"
+#include "urbanpvs/geometry/occluders/BlockSettings.hpp"
 #include "urbanpvs/geometry/occluders/Blocks.hpp"
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
-#include "urbanpvs/runtime/exit_codes.hpp"
-#include "urbanpvs/runtime/file_io.hpp"
+#include "urbanpvs/geometry/settings/SettingOptions.hpp"
+#include "urbanpvs/runtime/ExitCodes.hpp"
+#include "urbanpvs/runtime/FileIo.hpp"
 
 namespace {
 
@@ -120,35 +124,33 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   ReadOptions read;
   BlockOptions block_options;
-  double epsilon = 1.0;
-  double default_height = 0;
-  std::string coordinates = "auto", svg;
+  ViewCellOptions cells;  // only its epsilon, the shrinking distance of the bake
+  std::string svg;
   app.add_option("files", files, "City files")->required()->check(CLI::ExistingFile);
-  app.add_option("--default-height", default_height,
-                 "Height in m for GeoJSON buildings without height attributes");
-  app.add_option("--level-height", read.level_height, "Metres per building:levels storey")
-      ->capture_default_str();
-  app.add_option("--coordinates", coordinates, "GeoJSON coordinates: auto, geographic, projected")
-      ->check(CLI::IsMember({"auto", "geographic", "projected"}))
-      ->capture_default_str();
-  app.add_flag("--strict", read.strict,
-               "Refuse geometry that needs repair instead of repairing it");
+  // The reading and block options of the bake, from the stages' own tables.
+  const SettingOptions<ReadOptions> read_options(app, read_settings());
+  const SettingOptions<BlockOptions> block_setting_options(app, block_settings());
+  const SettingTable<ViewCellOptions> epsilon_only = {
+      *find_setting(view_cell_settings(), "epsilon")};
+  const SettingOptions<ViewCellOptions> epsilon_option(app, epsilon_only);
   app.add_flag("--skip-invalid")
       ->description("Accepted for old scripts; buildings are now always kept");
-  app.add_option("--epsilon", epsilon, "Occluder shrinking distance in m")->capture_default_str();
-  app.add_option("--gap", block_options.gap_tolerance,
-                 "Gaps between footprints narrower than this (m) are closed")
-      ->capture_default_str();
   app.add_option("--svg", svg, "Write a map of footprints, blocks and occluders");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : kExitUsage;
   }
-  if (default_height > 0) read.default_height = default_height;
-  read.coordinates = coordinates == "geographic"  ? ReadOptions::Coordinates::Geographic
-                     : coordinates == "projected" ? ReadOptions::Coordinates::Projected
-                                                  : ReadOptions::Coordinates::Auto;
+  try {
+    read_options.apply(read);
+    block_setting_options.apply(block_options);
+    epsilon_option.apply(cells);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "urbanpvs-cityinfo: %s\nRun with --help for more information.\n",
+                 e.what());
+    return kExitUsage;
+  }
+  const double epsilon = cells.epsilon;
   try {
     const City city = read_city(files, read);
     const std::vector<Block> blocks = build_blocks(city.objects, block_options);

@@ -11,7 +11,7 @@
 
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
 #include "urbanpvs/preprocess/visibility/CellCounters.hpp"
-#include "urbanpvs/runtime/crc32c.hpp"
+#include "urbanpvs/runtime/Crc32c.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
 
 namespace urbanpvs::preprocess {
@@ -48,17 +49,17 @@ std::vector<geometry::Box3> object_boxes(const std::vector<geometry::CityObject>
 }  // namespace
 
 void BakeOptions::validate() const {
-  CullMapSettings{cells.epsilon, pixel}.validate();
-  geometry::validate(cells);
-  if (initial_map < 8 || initial_map > 65536)
-    throw std::invalid_argument("initial cull-map size " + std::to_string(initial_map) +
-                                " pixels is outside 8 .. 65536");
-  if (max_map < initial_map || max_map > 65536)
-    throw std::invalid_argument("largest cull-map size " + std::to_string(max_map) +
-                                " pixels is outside initial_map (" + std::to_string(initial_map) +
-                                ") .. 65536");
-  if (!(blocks.gap_tolerance >= 0))
-    throw std::invalid_argument("block gap tolerance must be >= 0 m");
+  // Every limit is the settings table's (BakeSettings.hpp), the one the command line enforces;
+  // what is left here are the rules between settings.
+  PreprocessRequest request;
+  request.bake = *this;
+  geometry::check_limits(bake_settings(), request);
+  if (max_map < initial_map)
+    throw std::invalid_argument("--max-map must be at least --initial-map (" +
+                                std::to_string(initial_map) + "), got \"" +
+                                std::to_string(max_map) + "\"");
+  CullMapSettings{cells.epsilon, pixel}.validate();  // the coupling of ε and the pixel (7.2)
+  geometry::validate(cells);                         // the region
 }
 
 BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
@@ -87,9 +88,10 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
 
 std::vector<Vec3> BakeScene::samples(std::uint32_t cell) const {
   std::vector<Vec3> out;
-  for (std::uint32_t e : mesh_.cells[cell].edge)
-    for (const geometry::Point3& p : mesh_.samples_of(mesh_.edges[e]))
-      out.push_back({p.x, p.y, p.z});
+  for (std::uint32_t e : mesh_.cells[cell].edge) {
+    const auto s = mesh_.samples_of(mesh_.edges[e]);
+    out.insert(out.end(), s.begin(), s.end());
+  }
   return out;
 }
 

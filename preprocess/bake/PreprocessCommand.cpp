@@ -17,7 +17,7 @@
 #include "urbanpvs/preprocess/bake/BakeProgress.hpp"
 #include "urbanpvs/preprocess/bake/BakeReport.hpp"
 #include "urbanpvs/preprocess/bake/ParallelBake.hpp"
-#include "urbanpvs/runtime/pvs_writer.hpp"
+#include "urbanpvs/runtime/PvsWriter.hpp"
 
 #ifndef URBANPVS_VERSION
 #define URBANPVS_VERSION "unknown"

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "urbanpvs/geometry/settings/SettingOptions.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 #include "urbanpvs/preprocess/visibility/CullMap.hpp"
@@ -31,35 +32,6 @@ class UsageError : public std::runtime_error {
 // Every setting of the table as text, from the command line or the config, until one pass sets
 // and checks them all (so a bad value reads the same wherever it came from).
 using SettingTexts = std::map<std::string, std::string>;
-
-std::string type_name(const Setting& s) {
-  switch (s.kind) {
-    case SettingKind::Number:
-      return s.unit == "m" ? "M" : "X";
-    case SettingKind::Integer:
-      return s.unit.empty() ? "N" : "PIXELS";
-    case SettingKind::Choice: {
-      std::string out;
-      for (const std::string& c : s.choices) out += (out.empty() ? "" : "|") + c;
-      return out;
-    }
-    case SettingKind::Band:
-      return "MIN:MAX";
-    case SettingKind::Path:
-      return "FILE";
-    case SettingKind::Flag:
-      break;
-  }
-  return "";
-}
-
-std::string description(const Setting& s, const PreprocessRequest& defaults) {
-  std::string text = s.help;
-  if (!s.unit.empty()) text += ", in " + s.unit;
-  if (s.kind == SettingKind::Flag) return text;
-  if (const std::string limits = s.limits_text(); !limits.empty()) text += " (" + limits + ")";
-  return text + " [default: " + (s.default_text.empty() ? s.get(defaults) : s.default_text) + "]";
-}
 
 // A JSON value of the config as the text the setting parses.
 std::string config_text(const Setting& s, const nlohmann::json& value, const std::string& path,
@@ -124,7 +96,7 @@ void finish_and_validate(PreprocessRequest& r, const SettingTexts& texts) {
       if (const auto it = texts.find(s.key); it != texts.end()) s.set(r, it->second);
     // The pixel size defaults to the largest one that keeps rasterization conservative for ε
     // (thesis 7.2); a larger one is refused with CullMapSettings' own explanation.
-    if (!texts.count("pixel")) r.bake.pixel = CullMapSettings::max_pixel(r.bake.cells.epsilon);
+    if (!texts.count("pixel")) r.bake.pixel = default_pixel(r.bake.cells.epsilon);
     r.bake.validate();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
@@ -153,19 +125,7 @@ std::optional<int> parse_preprocess_command_line(int argc, const char* const* ar
       ->type_name("OUT.pvs")
       ->required();
   // The settings, from the one table (BakeSettings.hpp).
-  SettingTexts cli;
-  std::map<std::string, bool> flags;
-  for (const Setting& s : bake_settings()) {
-    const std::string name = "--" + s.key;
-    if (s.kind == SettingKind::Flag) {
-      app.add_flag(name, flags[s.key], description(s, defaults));
-      continue;
-    }
-    CLI::Option* o = app.add_option(name, cli[s.key], description(s, defaults));
-    o->type_name(type_name(s));
-    if (s.kind == SettingKind::Path && s.key == "region") o->check(CLI::ExistingFile);
-  }
-  app.add_flag("-q", flags["quiet"], "Same as --quiet");
+  const geometry::SettingOptions<PreprocessRequest> settings(app, bake_settings(), defaults);
   app.add_flag("--skip-invalid")
       ->description(
           "Accepted for old scripts; the default now keeps every building (repaired, or "
@@ -184,13 +144,7 @@ std::optional<int> parse_preprocess_command_line(int argc, const char* const* ar
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : kExitUsage;
   }
-  SettingTexts texts;
-  for (const Setting& s : bake_settings()) {
-    const bool given =
-        app.get_option("--" + s.key)->count() > 0 || (s.key == "quiet" && flags["quiet"]);
-    if (!given) continue;
-    texts[s.key] = s.kind == SettingKind::Flag ? (flags[s.key] ? "true" : "false") : cli[s.key];
-  }
+  SettingTexts texts = settings.given();
   try {
     if (!config.empty()) apply_config(config, texts);
     finish_and_validate(r, texts);

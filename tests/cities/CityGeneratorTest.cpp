@@ -7,9 +7,9 @@
 #include <stdexcept>
 
 #include "CityTestSupport.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/cities/geojson_writer.hpp"
-#include "urbanpvs/cities/random.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
+#include "urbanpvs/cities/GeoJsonWriter.hpp"
+#include "urbanpvs/cities/Random.hpp"
 
 using namespace citytest;
 using urbanpvs::cities::BlockKind;

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "urbanpvs/cities/city_generator.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
 
 namespace citytest {
 

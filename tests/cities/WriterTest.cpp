@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "CityTestSupport.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/cities/geojson_writer.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
+#include "urbanpvs/cities/GeoJsonWriter.hpp"
 
 using namespace citytest;
 using nlohmann::json;

@@ -6,9 +6,9 @@
 
 #include <map>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
-#include "urbanpvs/cities/geojson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
+#include "urbanpvs/cities/GeoJsonWriter.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 
 namespace urbanpvs::geometry {

@@ -13,8 +13,8 @@
 #include <optional>
 #include <random>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/geometry/cells/CellLocator.hpp"
 #include "urbanpvs/geometry/cells/GroundHeight.hpp"
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
@@ -307,17 +307,17 @@ void check_edges_and_angles(const ViewCellMesh& m) {
 // Every point of every top edge within ε of a sample of that edge; samples shared bit for bit.
 void check_samples(const ViewCellMesh& m) {
   const double eps = m.options.epsilon;
-  std::vector<Point3> again;
+  std::vector<Vec3> again;
   for (std::size_t i = 0; i < m.edges.size(); ++i) {
     const CellEdge& e = m.edges[i];
     // The top edge is level at the higher prism top of the cells beside it (thesis 5.3: the
     // boundary of a flat top face sees all the prism sees).
     double level = m.cells[std::size_t(e.cell[0])].zmax;
     if (e.cell[1] >= 0) level = std::max(level, m.cells[std::size_t(e.cell[1])].zmax);
-    auto top = [&](std::uint32_t v) { return Point3{m.vertices[v].x, m.vertices[v].y, level}; };
+    auto top = [&](std::uint32_t v) { return Vec3{m.vertices[v].x, m.vertices[v].y, level}; };
     const auto s = m.samples_of(e);
     ASSERT_GE(s.size(), 2u);
-    const Point3 a = top(e.vertex[0]), b = top(e.vertex[1]);
+    const Vec3 a = top(e.vertex[0]), b = top(e.vertex[1]);
     ASSERT_EQ(s.front(), a);
     ASSERT_EQ(s.back(), b);
     const Vec2 pa = m.vertices[e.vertex[0]], pb = m.vertices[e.vertex[1]];
@@ -325,9 +325,9 @@ void check_samples(const ViewCellMesh& m) {
     double worst = 0;
     for (int j = 0; j <= 50; ++j) {
       const double t = j / 50.0;
-      const Point3 p{std::lerp(a.x, b.x, t), std::lerp(a.y, b.y, t), std::lerp(a.z, b.z, t)};
+      const Vec3 p{std::lerp(a.x, b.x, t), std::lerp(a.y, b.y, t), std::lerp(a.z, b.z, t)};
       double best = 1e300;
-      for (const Point3& q : s)
+      for (const Vec3& q : s)
         best = std::min(best, std::sqrt((p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) +
                                         (p.z - q.z) * (p.z - q.z)));
       worst = std::max(worst, best);
@@ -568,7 +568,7 @@ TEST(ViewCells, GroundFromTerrain) {
   City city = city_of(std::move(objects));
   // A tilted plane z = 5 + 0.01 x + 0.02 y over [0, 100]², in two triangles.
   auto z = [](double x, double y) { return 5 + 0.01 * x + 0.02 * y; };
-  auto v = [&](double x, double y) { return std::array<double, 3>{x, y, z(x, y)}; };
+  auto v = [&](double x, double y) { return geometry::Vec3{x, y, z(x, y)}; };
   city.terrain.triangles.push_back({{v(0, 0), v(100, 0), v(100, 100)}});
   city.terrain.triangles.push_back({{v(0, 0), v(100, 100), v(0, 100)}});
   ViewCellOptions o;
@@ -597,7 +597,7 @@ TEST(ViewCells, GroundFromTerrain) {
   for (const CellEdge& e : m.edges) {
     double level = m.cells[std::size_t(e.cell[0])].zmax;
     if (e.cell[1] >= 0) level = std::max(level, m.cells[std::size_t(e.cell[1])].zmax);
-    for (const Point3& s : m.samples_of(e)) {
+    for (const Vec3& s : m.samples_of(e)) {
       ASSERT_EQ(s.z, level);
       if (s.x >= 0) {
         ASSERT_GE(s.z, z(s.x, s.y) + 1.5 - 1e-9);
@@ -617,7 +617,7 @@ TEST(ViewCells, TopClearsTheHighestGroundInsideTheCell) {
   // A pyramid: four triangles around a peak 6 m up at (63.3, 47.1), where no cell corner
   // sits; the base is at z = 0.
   auto v = [](double x, double y) {
-    return std::array<double, 3>{x, y, x == 63.3 && y == 47.1 ? 6.0 : 0.0};
+    return geometry::Vec3{x, y, x == 63.3 && y == 47.1 ? 6.0 : 0.0};
   };
   const std::array<std::array<double, 2>, 4> ring{
       {{33.3, 17.1}, {93.3, 17.1}, {93.3, 77.1}, {33.3, 77.1}}};
@@ -682,15 +682,15 @@ TEST(ViewCells, GroundFromBuildingsOnTheirWalls) {
 // ---- samples, options, regions, determinism ---------------------------------------------------
 
 TEST(ViewCellSamples, SpacingAndEndpoints) {
-  std::vector<Point3> s;
+  std::vector<Vec3> s;
   sample_top_edge({0, 0, 0}, {10, 0, 0}, 1, s);
   ASSERT_EQ(s.size(), 6u);  // 5 steps of 2 m
-  EXPECT_EQ(s[2], (Point3{4, 0, 0}));
+  EXPECT_EQ(s[2], (Vec3{4, 0, 0}));
   s.clear();
   sample_top_edge({0, 0, 0}, {0.5, 0, 0}, 1, s);  // short: just the endpoints
   EXPECT_EQ(s.size(), 2u);
   s.clear();
-  const Point3 a{0.1, 0.7, 3}, b{13.3, -4.9, 5.5};
+  const Vec3 a{0.1, 0.7, 3}, b{13.3, -4.9, 5.5};
   sample_top_edge(a, b, 0.3, s);
   EXPECT_EQ(s.front(), a);
   EXPECT_EQ(s.back(), b);
@@ -702,6 +702,7 @@ TEST(ViewCells, OptionsAreValidatedByName) {
     try {
       validate(o);
     } catch (const std::invalid_argument& e) {
+      // The settings table's words, as the command lines print them.
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
       return;
     }
@@ -710,25 +711,28 @@ TEST(ViewCells, OptionsAreValidatedByName) {
   ViewCellOptions o;
   EXPECT_NO_THROW(validate(o));
   o.max_cell_edge = 0;
-  fails_naming(o, "max_cell_edge");
+  fails_naming(o, "--max-cell-edge must be 0.5 .. 10000 m, got \"0\"");
   o = {};
   o.max_cell_edge = std::nan("");
-  fails_naming(o, "max_cell_edge");
+  fails_naming(o, "--max-cell-edge expects a number, got \"nan\"");
   o = {};
   o.eye_min = 3;
-  fails_naming(o, "eye_min");
+  fails_naming(o, "--eye-band must be 0 <= MIN <= MAX <= 1000, got \"3:2\"");
   o = {};
   o.eye_max = -1;
-  fails_naming(o, "eye_max");
+  fails_naming(o, "--eye-band must be 0 <= MIN <= MAX <= 1000, got \"0:-1\"");
   o = {};
   o.epsilon = 0;
-  fails_naming(o, "epsilon");
+  fails_naming(o, "--epsilon must be 0.01 .. 1000 m, got \"0\"");
   o = {};
   o.margin = -1;
-  fails_naming(o, "margin");
+  fails_naming(o, "--margin must be 0 .. 1e+05 m, got \"-1\"");
   o = {};
   o.narrow_gap = 2;
-  fails_naming(o, "narrow_gap");
+  fails_naming(o, "--narrow-gap must be 0 .. 1 m, got \"2\"");
+  o = {};
+  o.gap = 11;
+  fails_naming(o, "--gap must be 0 .. 10 m, got \"11\"");
   o = {};
   o.region.push_back({{{0, 0}, {10, 10}, {10, 0}, {0, 10}}, {}});  // a bow tie
   fails_naming(o, "region[0]");

@@ -11,12 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "urbanpvs/geometry/cells/ViewCellSettings.hpp"
+#include "urbanpvs/geometry/city/ReadSettings.hpp"
+#include "urbanpvs/geometry/occluders/BlockSettings.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 #include "urbanpvs/preprocess/visibility/CullMap.hpp"
 
 namespace fs = std::filesystem;
 using namespace urbanpvs::preprocess;
+namespace geometry = urbanpvs::geometry;
 
 namespace {
 
@@ -27,6 +31,18 @@ std::optional<int> parse(std::vector<std::string> args, PreprocessRequest& r) {
   std::vector<const char*> argv;
   for (const std::string& a : args) argv.push_back(a.c_str());
   return parse_preprocess_command_line(int(argv.size()), argv.data(), r);
+}
+
+// The standard output of a command.
+std::string output_of(const std::string& command) {
+  std::string out;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+      out.append(buffer, n);
+    ::pclose(pipe);
+  }
+  return out;
 }
 
 std::string text_of(const fs::path& p) {
@@ -155,9 +171,66 @@ TEST(BakeSettings, TheStagesAcceptTheTablesWholeRange) {
       if (s.key == "initial-map") r.bake.max_map = 65536;  // initial-map <= max-map
       ASSERT_NO_THROW(s.set(r, std::to_string(v)));
       r.bake.cells.gap = r.bake.blocks.gap_tolerance;  // as BakeScene hands it on
-      if (s.key != "pixel") r.bake.pixel = CullMapSettings::max_pixel(r.bake.cells.epsilon);
+      if (s.key != "pixel") r.bake.pixel = default_pixel(r.bake.cells.epsilon);
       if (s.key == "pixel") r.bake.cells.epsilon = 1000;  // the largest pixel needs a large ε
       EXPECT_NO_THROW(r.bake.validate());
+    }
+  }
+}
+
+// The other direction: a stage refuses exactly what the table refuses, with the table's words,
+// because it checks its options against the table (geometry::check_limits).
+TEST(BakeSettings, TheStagesRefuseWhatTheTableRefuses) {
+  geometry::ViewCellOptions cells;
+  cells.max_cell_edge = 0.25;
+  try {
+    geometry::validate(cells);
+    ADD_FAILURE() << "max_cell_edge 0.25 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--max-cell-edge must be 0.5 .. 10000 m, got \"0.25\"");
+  }
+  BakeOptions bake;
+  bake.max_map = 1 << 20;
+  try {
+    bake.validate();
+    ADD_FAILURE() << "max_map 2^20 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--max-map must be 8 .. 65536 pixels, got \"1048576\"");
+  }
+  bake = BakeOptions{};
+  bake.blocks.gap_tolerance = -1;
+  EXPECT_THROW(bake.validate(), std::invalid_argument);
+}
+
+// The bake's table takes the stages' tables over unchanged: one entry per setting, wherever it
+// is used.
+TEST(BakeSettings, TheStagesTablesAreTakenOverUnchanged) {
+  auto same = [](const auto& stage_setting) {
+    const Setting* s = find_setting(stage_setting.key);
+    ASSERT_NE(s, nullptr) << stage_setting.key;
+    EXPECT_EQ(s->help, stage_setting.help);
+    EXPECT_EQ(s->limits_text(), stage_setting.limits_text());
+    EXPECT_EQ(s->stage, stage_setting.stage);
+  };
+  for (const auto& s : geometry::read_settings()) same(s);
+  for (const auto& s : geometry::block_settings()) same(s);
+  for (const auto& s : geometry::view_cell_settings())
+    if (s.key != "gap") same(s);  // the bake's gap is the blocks' one
+}
+
+// Every tool that reads a city offers the same reading options, with the same help.
+TEST(BakeSettings, EveryToolReadsCitiesWithTheSameOptions) {
+  std::string tools = URBANPVS_CITY_TOOLS;
+  for (std::size_t at = 0; at <= tools.size();) {
+    const std::size_t bar = std::min(tools.find('|', at), tools.size());
+    const std::string tool = tools.substr(at, bar - at);
+    at = bar + 1;
+    SCOPED_TRACE(tool);
+    const std::string help = output_of("'" + tool + "' --help");
+    ASSERT_FALSE(help.empty());
+    for (const auto& s : geometry::read_settings()) {
+      EXPECT_NE(help.find("--" + s.key + " "), std::string::npos) << s.key;
+      EXPECT_NE(help.find(s.help.substr(0, 30)), std::string::npos) << s.key << ": help text";
     }
   }
 }

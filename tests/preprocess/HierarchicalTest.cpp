@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/preprocess/bake/BakeScene.hpp"
 #include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
@@ -231,7 +231,7 @@ TEST(OccluderShadow, GrazingWallsShadowAllTheWayToTheMapBorder) {
   const Vec3 v{0, -0.5, 2};
   const auto s = occluder_shadow(v, {-100, 0}, {100, 0}, 10, {{-50, -10}, {50, 100}});
   ASSERT_TRUE(s);
-  for (const Vec2 p : {Vec2{0, 95}, Vec2{-45, 95}, Vec2{45, 95}, Vec2{0, 5}}) {
+  for (const Vec2& p : {Vec2{0, 95}, Vec2{-45, 95}, Vec2{45, 95}, Vec2{0, 5}}) {
     bool in = true;
     for (std::size_t e = 0; e < s->polygon.size(); ++e)
       in = in && geometry::cross(s->polygon[(e + 1) % s->polygon.size()] - s->polygon[e],

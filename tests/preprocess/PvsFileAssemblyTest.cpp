@@ -12,7 +12,7 @@
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/preprocess/bake/CityBake.hpp"
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
-#include "urbanpvs/runtime/pvs_file.hpp"
+#include "urbanpvs/runtime/PvsFile.hpp"
 
 namespace fs = std::filesystem;
 using namespace urbanpvs;

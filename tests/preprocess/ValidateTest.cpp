@@ -10,18 +10,18 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "urbanpvs/cities/city_generator.hpp"
-#include "urbanpvs/cities/cityjson_writer.hpp"
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/preprocess/bake/CityBake.hpp"
-#include "urbanpvs/runtime/pvs_file.hpp"
+#include "urbanpvs/runtime/PvsFile.hpp"
 #include "urbanpvs/validate/Validator.hpp"
 
 namespace urbanpvs {
 namespace {
 
 using geometry::Vec2;
-using validate::Point3;
+using validate::Vec3;
 
 geometry::City generated(std::uint64_t seed, cities::RoofMode roofs) {
   cities::CityParams p;
@@ -76,7 +76,7 @@ geometry::CityObject box_object(std::uint32_t index, double x0, double y0, doubl
   geometry::CityObject o;
   o.index = index;
   o.source_id = "box" + std::to_string(index);
-  using V = std::array<double, 3>;
+  using V = geometry::Vec3;
   auto face = [&](V a, V b, V c, V d) { o.surfaces.push_back({{{a, b, c, d}}}); };
   face({x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, y0, z0});
   face({x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1});
@@ -150,16 +150,16 @@ TEST(ValidateRayScene, ObjectWithoutOccluderIsItsWholeBoxAndBlocksNothing) {
   EXPECT_EQ(met[1].first, 1u);
   // Its targets cover its whole box.
   const auto points = validate::box_points(c.objects[0].bbox, 2.0);
-  EXPECT_TRUE(std::any_of(points.begin(), points.end(), [](const Point3& p) { return p.z == 5; }));
+  EXPECT_TRUE(std::any_of(points.begin(), points.end(), [](const Vec3& p) { return p.z == 5; }));
 }
 
 TEST(ValidateTargets, SpreadOverTheSurfaceAndItsEdgesButNotItsHoles) {
   // A wall 10 m wide, 6 m high with a 2 m × 2 m window.
   const geometry::Surface3 wall{{{{0, 0, 0}, {10, 0, 0}, {10, 0, 6}, {0, 0, 6}},
                                  {{4, 0, 2}, {4, 0, 4}, {6, 0, 4}, {6, 0, 2}}}};
-  const std::vector<Point3> points = validate::surface_points(wall, 1.0);
+  const std::vector<Vec3> points = validate::surface_points(wall, 1.0);
   EXPECT_GT(points.size(), 60u);
-  for (const Point3& p : points) {
+  for (const Vec3& p : points) {
     EXPECT_DOUBLE_EQ(p.y, 0);
     EXPECT_TRUE(p.x >= 0 && p.x <= 10 && p.z >= 0 && p.z <= 6);
     EXPECT_FALSE(p.x > 4 && p.x < 6 && p.z > 2 && p.z < 4) << p.x << " " << p.z;
@@ -168,7 +168,7 @@ TEST(ValidateTargets, SpreadOverTheSurfaceAndItsEdgesButNotItsHoles) {
   for (double x = 0; x <= 10; x += 0.25)
     for (double z = 0; z <= 6; z += 0.25) {
       double nearest = 1e9;
-      for (const Point3& p : points) nearest = std::min(nearest, std::hypot(p.x - x, p.z - z));
+      for (const Vec3& p : points) nearest = std::min(nearest, std::hypot(p.x - x, p.z - z));
       EXPECT_LE(nearest, 1.0) << x << " " << z;
     }
 }
@@ -182,7 +182,7 @@ TEST(ValidateCrack, GapNarrowerThanTheCrackIsClosedWiderStaysOpen) {
         city_of({box_object(0, 0, -10, 20, 0, 0, 6), box_object(1, 0, gap, 20, 10, 0, 6),
                  box_object(2, 30, -5, 35, 5, 0, 6)});
     const validate::RayScene s(c);
-    const Point3 v{-10, 0.5 * gap, 1}, target{30, 0.5 * gap, 1};
+    const Vec3 v{-10, 0.5 * gap, 1}, target{30, 0.5 * gap, 1};
     EXPECT_TRUE(validate::target_seen(s, v, target, 2, 0.0)) << gap;
     EXPECT_EQ(validate::target_seen(s, v, target, 2, 0.05), gap > 0.05) << gap;
   }
@@ -399,7 +399,7 @@ TEST(ValidateCatches, GeoJsonGableCutAtItsFullHeightWithTheRoofsSurfaces) {
   const geometry::Polygon cells = s.rect(-15, 1.5, -2, 4);
   auto p = [&](double x, double y, double h) {
     const Vec2 q = s.at(x, y);
-    return std::array<double, 3>{q.x, q.y, s.z(h)};
+    return geometry::Vec3{q.x, q.y, s.z(h)};
   };
   geometry::CityObject& gable = s.object("gable");
   gable.surfaces = {

@@ -8,7 +8,7 @@
 namespace urbanpvs::validate {
 namespace {
 
-using Vertex = std::array<double, 3>;
+using Vertex = Vec3;
 using Rings = std::vector<std::vector<Vertex>>;
 
 // A wall whose foot is at most this far (m) above the ground near it stands on the ground:
@@ -91,7 +91,7 @@ bool inside_even_odd(std::size_t ring_count, RingAt&& ring_at, Vec2 p) {
   return in;
 }
 
-void add_box_faces(const Box3& box, double spacing, std::vector<Point3>& out) {
+void add_box_faces(const Box3& box, double spacing, std::vector<Vec3>& out) {
   const double x0 = box.xy.min.x, x1 = box.xy.max.x, y0 = box.xy.min.y, y1 = box.xy.max.y;
   const double z0 = box.zmin, z1 = box.zmax;
   const Rings faces[] = {
@@ -103,13 +103,13 @@ void add_box_faces(const Box3& box, double spacing, std::vector<Point3>& out) {
       {{{x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1}}},
   };
   for (const Rings& f : faces)
-    for (const Point3& p : surface_points(geometry::Surface3{f}, spacing)) out.push_back(p);
+    for (const Vec3& p : surface_points(geometry::Surface3{f}, spacing)) out.push_back(p);
 }
 
 }  // namespace
 
-std::vector<Point3> surface_points(const geometry::Surface3& surface, double spacing) {
-  std::vector<Point3> out;
+std::vector<Vec3> surface_points(const geometry::Surface3& surface, double spacing) {
+  std::vector<Vec3> out;
   if (surface.rings.empty() || surface.rings.front().empty()) return out;
   // The boundary, vertices included: thin surfaces (a wall strip under a roof step, narrower
   // than the lattice) are still sampled.
@@ -164,13 +164,13 @@ std::vector<Point3> surface_points(const geometry::Surface3& surface, double spa
   return out;
 }
 
-std::vector<Point3> box_points(const Box3& box, double spacing) {
-  std::vector<Point3> out;
+std::vector<Vec3> box_points(const Box3& box, double spacing) {
+  std::vector<Vec3> out;
   if (!box.xy.empty() && box.zmin <= box.zmax) add_box_faces(box, spacing, out);
   return out;
 }
 
-RayScene::Segment::Segment(const Point3& from, const Point3& to, double t_max)
+RayScene::Segment::Segment(const Vec3& from, const Vec3& to, double t_max)
     : p(from), d{to.x - from.x, to.y - from.y, to.z - from.z} {
   const double a[] = {p.x, p.y, p.z},
                e[] = {p.x + t_max * d.x, p.y + t_max * d.y, p.z + t_max * d.z};
@@ -479,7 +479,7 @@ double RayScene::some_blocker_before(const Segment& s, std::uint32_t object, dou
   return hit < t_max ? hit : kNone;
 }
 
-bool RayScene::reaches(const Point3& p, const Point3& q, std::uint32_t object) const {
+bool RayScene::reaches(const Vec3& p, const Vec3& q, std::uint32_t object) const {
   const double len =
       std::sqrt((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y) + (q.z - p.z) * (q.z - p.z));
   if (len <= kCoincident) return true;
@@ -497,7 +497,7 @@ bool RayScene::reaches(const Point3& p, const Point3& q, std::uint32_t object) c
   return some_blocker_before(s, object, own - slack) >= kNone;
 }
 
-void RayScene::first_met(const Point3& p, const Point3& q,
+void RayScene::first_met(const Vec3& p, const Vec3& q,
                          std::vector<std::pair<std::uint32_t, double>>& met) const {
   const Segment s(p, q, 1.0);
   double nearest = kNone;

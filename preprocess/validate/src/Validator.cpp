@@ -13,22 +13,21 @@ namespace {
 // Targets of one object: points spread over its surfaces when they block, over its box when it
 // does not (it may be as large as its box). Points shared by neighbouring surfaces (their
 // common edges) are kept once.
-std::vector<Point3> target_points(const geometry::CityObject& o, double spacing) {
-  std::vector<Point3> pts;
+std::vector<Vec3> target_points(const geometry::CityObject& o, double spacing) {
+  std::vector<Vec3> pts;
   if (RayScene::blocks(o)) {
     for (const geometry::Surface3& s : o.surfaces)
-      for (const Point3& p : surface_points(s, spacing)) pts.push_back(p);
+      for (const Vec3& p : surface_points(s, spacing)) pts.push_back(p);
   } else {
     pts = box_points(o.bbox, spacing);
   }
-  auto key = [](const Point3& p) {
+  auto key = [](const Vec3& p) {
     return std::array<long long, 3>{std::llround(p.x * 1e4), std::llround(p.y * 1e4),
                                     std::llround(p.z * 1e4)};
   };
-  std::sort(pts.begin(), pts.end(),
-            [&](const Point3& a, const Point3& b) { return key(a) < key(b); });
+  std::sort(pts.begin(), pts.end(), [&](const Vec3& a, const Vec3& b) { return key(a) < key(b); });
   pts.erase(std::unique(pts.begin(), pts.end(),
-                        [&](const Point3& a, const Point3& b) { return key(a) == key(b); }),
+                        [&](const Vec3& a, const Vec3& b) { return key(a) == key(b); }),
             pts.end());
   return pts;
 }
@@ -54,7 +53,7 @@ std::vector<Point3> target_points(const geometry::CityObject& o, double spacing)
 // sight line, which is a crack by this definition. Targets lie on all surfaces at
 // point_spacing, so what stays unchecked is a view of an object through an opening both
 // narrower than point_spacing and missing every target, as with any sampling.
-bool all_reach(const RayScene& scene, const Point3& v, const Point3& q, std::uint32_t object,
+bool all_reach(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint32_t object,
                double crack, std::size_t& cast) {
   ++cast;
   if (!scene.reaches(v, q, object)) return false;
@@ -84,7 +83,7 @@ bool all_reach(const RayScene& scene, const Point3& v, const Point3& q, std::uin
   return true;
 }
 
-Point3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_64& rng) {
+Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   double r1 = std::sqrt(u(rng)), r2 = u(rng);
   const auto& t = c.triangle;
@@ -95,8 +94,8 @@ Point3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_6
 }
 
 // The objects the rays of a cube map around v meet first, with the points where they meet them.
-void cube_map_met(const RayScene& scene, const Point3& v, int res, double reach,
-                  std::vector<std::pair<std::uint32_t, Point3>>& met, std::size_t& rays) {
+void cube_map_met(const RayScene& scene, const Vec3& v, int res, double reach,
+                  std::vector<std::pair<std::uint32_t, Vec3>>& met, std::size_t& rays) {
   std::vector<std::pair<std::uint32_t, double>> along;
   for (int face = 0; face < 6; ++face)
     for (int i = 0; i < res; ++i)
@@ -107,8 +106,7 @@ void cube_map_met(const RayScene& scene, const Point3& v, int res, double reach,
         const double sign = face % 2 ? -1 : 1;
         d[axis] = sign, d[(axis + 1) % 3] = s, d[(axis + 2) % 3] = t;
         const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        const Point3 q{v.x + reach * d[0] / len, v.y + reach * d[1] / len,
-                       v.z + reach * d[2] / len};
+        const Vec3 q{v.x + reach * d[0] / len, v.y + reach * d[1] / len, v.z + reach * d[2] / len};
         along.clear();
         scene.first_met(v, q, along);
         ++rays;
@@ -120,7 +118,7 @@ void cube_map_met(const RayScene& scene, const Point3& v, int res, double reach,
 
 }  // namespace
 
-bool target_seen(const RayScene& scene, const Point3& v, const Point3& q, std::uint32_t object,
+bool target_seen(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint32_t object,
                  double crack, std::size_t* rays) {
   std::size_t cast = 0;
   const bool seen = all_reach(scene, v, q, object, crack, cast);
@@ -151,7 +149,7 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
   if (pvs.cell_count() == 0) throw std::runtime_error("the PVS file has no cells");
 
   const RayScene scene(city);
-  std::vector<std::vector<Point3>> points;
+  std::vector<std::vector<Vec3>> points;
   for (const geometry::CityObject& o : city.objects)
     points.push_back(target_points(o, options.point_spacing));
   const double reach = 2 * std::hypot(scene.bounds().max.x - scene.bounds().min.x,
@@ -163,13 +161,13 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
   runtime::PvsDecoder decoder(pvs);
   std::vector<char> in_pvs(city.objects.size()), seen(city.objects.size());
   std::vector<std::uint32_t> seen_list;
-  std::vector<std::pair<std::uint32_t, Point3>> met;
+  std::vector<std::pair<std::uint32_t, Vec3>> met;
   for (std::size_t n = 0; n < options.viewpoints; ++n) {
     const auto cell = static_cast<std::uint32_t>(
         std::uniform_int_distribution<std::uint64_t>(0, pvs.cell_count() - 1)(rng));
     runtime::CellGeometry geometry;
     pvs.cell(cell, geometry);
-    const Point3 v = random_viewpoint(geometry, n % 2 == 0, rng);
+    const Vec3 v = random_viewpoint(geometry, n % 2 == 0, rng);
     if (decoder.decode(cell) != runtime::Status::kOk)
       throw std::runtime_error("cannot decode the PVS of cell " + std::to_string(cell));
     std::fill(in_pvs.begin(), in_pvs.end(), 0);
@@ -177,14 +175,14 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
     for (std::uint32_t o : decoder) in_pvs[o] = 1;
     const bool measure = n < options.tightness_viewpoints;
     seen_list.clear();
-    auto record_seen = [&](std::uint32_t o, const Point3& at) {
+    auto record_seen = [&](std::uint32_t o, const Vec3& at) {
       seen[o] = 1;
       seen_list.push_back(o);
       if (!in_pvs[o]) report.misses.push_back({cell, v, o, city.objects[o].source_id, at});
     };
     for (std::uint32_t o = 0; o < city.objects.size(); ++o) {
       if (in_pvs[o] && !measure) continue;
-      for (const Point3& q : points[o])
+      for (const Vec3& q : points[o])
         if (all_reach(scene, v, q, o, options.crack, report.rays)) {
           record_seen(o, q);
           break;

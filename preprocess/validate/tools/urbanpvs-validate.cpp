@@ -15,7 +15,9 @@
 
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
-#include "urbanpvs/runtime/exit_codes.hpp"
+#include "urbanpvs/geometry/city/ReadSettings.hpp"
+#include "urbanpvs/geometry/settings/SettingOptions.hpp"
+#include "urbanpvs/runtime/ExitCodes.hpp"
 #include "urbanpvs/validate/Validator.hpp"
 
 int main(int argc, char** argv) {
@@ -24,20 +26,12 @@ int main(int argc, char** argv) {
       "Checks a PVS file against ray casting in the input's own surfaces: every object seen "
       "from a random viewpoint of a cell but missing from its PVS is a miss."};
   std::vector<std::string> inputs;
-  double default_height = 0;
   validate::ValidationOptions options;
   app.add_option("inputs", inputs, "City files, then the PVS file")->required()->expected(2, -1);
-  // The city must be read as for the bake.
+  // The city must be read as for the bake: the bake's own reading options (one table).
   geometry::ReadOptions read;
-  std::string coordinates = "auto";
-  app.add_option("--default-height", default_height, "As given to the preprocessor (m)");
-  app.add_option("--level-height", read.level_height, "As given to the preprocessor (m)")
-      ->capture_default_str();
-  app.add_option("--max-height", read.max_height, "As given to the preprocessor (m)")
-      ->capture_default_str();
-  app.add_option("--coordinates", coordinates, "As given to the preprocessor")
-      ->type_name("auto|geographic|projected")
-      ->capture_default_str();
+  const geometry::SettingOptions<geometry::ReadOptions> read_options(app,
+                                                                     geometry::read_settings());
   app.add_option("--viewpoints", options.viewpoints, "Random viewpoints checked")
       ->capture_default_str();
   app.add_option("--tightness-viewpoints", options.tightness_viewpoints,
@@ -60,19 +54,13 @@ int main(int argc, char** argv) {
   }
   try {
     options.validate();
-    if (coordinates != "auto" && coordinates != "geographic" && coordinates != "projected")
-      throw std::invalid_argument("--coordinates must be auto, geographic or projected");
+    read_options.apply(read);
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
     return exit_code::kUsage;
   }
   const std::string pvs_path = inputs.back();
   inputs.pop_back();
-  if (default_height > 0) read.default_height = default_height;
-  using Coordinates = geometry::ReadOptions::Coordinates;
-  read.coordinates = coordinates == "geographic"  ? Coordinates::Geographic
-                     : coordinates == "projected" ? Coordinates::Projected
-                                                  : Coordinates::Auto;
   try {
     const geometry::City city = geometry::read_city(inputs, read);
     runtime::PvsFile file;

@@ -5,11 +5,11 @@
 /// Umbrella header of the urbanpvs runtime (C++17, standard library only). See
 /// urbanpvs/urbanpvs.h for the C API over the same functions.
 
-#include "urbanpvs/runtime/crc32c.hpp"
-#include "urbanpvs/runtime/file_io.hpp"
-#include "urbanpvs/runtime/format.hpp"
-#include "urbanpvs/runtime/geodetic_frame.hpp"
-#include "urbanpvs/runtime/pvs_file.hpp"
-#include "urbanpvs/runtime/pvs_writer.hpp"
-#include "urbanpvs/runtime/status.hpp"
-#include "urbanpvs/runtime/types.hpp"
+#include "urbanpvs/runtime/Crc32c.hpp"
+#include "urbanpvs/runtime/FileIo.hpp"
+#include "urbanpvs/runtime/Format.hpp"
+#include "urbanpvs/runtime/GeodeticFrame.hpp"
+#include "urbanpvs/runtime/PvsFile.hpp"
+#include "urbanpvs/runtime/PvsWriter.hpp"
+#include "urbanpvs/runtime/Status.hpp"
+#include "urbanpvs/runtime/Types.hpp"

@@ -14,10 +14,10 @@ namespace urbanpvs::geometry {
 
 /// Number of samples on the segment a→b (3D): n + 1 for n = max(1, ceil(|ab| / 2ε)) equal steps.
 /// `epsilon` > 0.
-std::size_t top_edge_sample_count(const Point3& a, const Point3& b, double epsilon);
+std::size_t top_edge_sample_count(const Vec3& a, const Vec3& b, double epsilon);
 
 /// Appends the samples of a→b to `out`: a, evenly spaced interior points, b (the endpoints
 /// bit-identical to a and b). Deterministic: the same a, b, epsilon give the same bits.
-void sample_top_edge(const Point3& a, const Point3& b, double epsilon, std::vector<Point3>& out);
+void sample_top_edge(const Vec3& a, const Vec3& b, double epsilon, std::vector<Vec3>& out);
 
 }  // namespace urbanpvs::geometry

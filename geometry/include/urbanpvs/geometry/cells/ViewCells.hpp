@@ -15,42 +15,40 @@
 
 namespace urbanpvs::geometry {
 
-/// Every setting of the view-cell subdivision. Checked by validate(); the limits keep the output
+/// Every setting of the view-cell subdivision. Checked by validate() against the limits of
+/// view_cell_settings() (ViewCellSettings.hpp), the table every tool binds; they keep the output
 /// size sane (cells grow with area / max_cell_edge², samples with perimeter / epsilon).
 struct ViewCellOptions {
   /// Longest allowed cell edge. Smaller cells give tighter PVSs but more cells (thesis 5.3; the
   /// thesis's 8 km² Vienna model had 82,300 cells). The default gives 82,800 cells on a
   /// generated Vienna-scale city (8 km², ~2,000 blocks, seed 7). [Units: m]
-  /// [Limit: 0.5 .. 10000]
   double max_cell_edge = 18.0;
-  /// Bottom of the eye band above the ground. [Units: m] [Limit: 0 .. eye_max]
+  /// Bottom of the eye band above the ground. [Units: m]
   double eye_min = 0.0;
   /// Top of the eye band above the ground. A cell's prism reaches this far above the highest
   /// ground in it; its samples sit level at that top (thesis 5.3). [Units: m]
-  /// [Limit: eye_min .. 1000]
   double eye_max = 2.0;
   /// The default region (ignored when `region` is given) is everything within this margin of a
-  /// building's bounding rectangle. [Units: m] [Limit: 0 .. 100000]
+  /// building's bounding rectangle. [Units: m]
   double margin = 50.0;
   /// Sample spacing on the cells' top edges: every point of a top edge is within epsilon of a
   /// sample (thesis 5.3: samples at most 2ε apart; the occluders must be shrunk by the same ε,
-  /// thesis 7.2). [Units: m] [Limit: 0.01 .. 1000]
+  /// thesis 7.2). [Units: m]
   double epsilon = 1.0;
   /// Slivers of free space thinner than this along a wall (nearly coincident walls of
   /// neighbouring buildings: digitizing noise) are left out of the cells, instead of being
   /// refined into thousands of cells as narrow as the sliver; their area is reported in
-  /// ViewCellStats::sliver_area. 0 keeps every sliver. [Units: m] [Limit: 0 .. 1]
+  /// ViewCellStats::sliver_area. 0 keeps every sliver. [Units: m]
   double narrow_gap = 0.01;
   /// Footprints closer than this fuse before meshing, as they fuse into blocks (the bake sets
   /// it from BlockOptions::gap_tolerance): a gap a viewer cannot stand in gets no cells.
-  /// [Units: m] [Limit: 0 .. 10]
+  /// [Units: m]
   double gap = 0.05;
   /// Clean-up tolerance of free space's boundary (thesis 5.3 meshes free space, not the
   /// data's noise): the fused footprints grow by this much, then their rings are simplified
   /// within it, so near-duplicate vertices, walls a few mm apart and wiggles smaller than it
   /// vanish while every cell stays outside every building. The default keeps a viewer's eye
   /// 0.275 m from any wall (gap/2 + snap), about half a body's width. [Units: m]
-  /// [Limit: 0 .. 10]
   double snap = 0.25;
   /// The mesher refines a cell for its shape only while its shortest edge is longer than this,
   /// and splits a wall piece for Gabriel conformity only while it is longer than this.
@@ -59,7 +57,7 @@ struct ViewCellOptions {
   /// Measured with urbanpvs-cells: the generated 1 km² city (seed 7) gets 12,158 cells with 4, 6
   /// or 9 m; Delft's alleys 1,430 with 4 m and 1,387 with 6 m (1,640 when walls were split).
   /// Cells smaller than max_cell_edge / 2 are always refined for shape (the floor used is
-  /// min(min_cell_edge, max_cell_edge / 2)). [Units: m] [Limit: 0 .. 10000]
+  /// min(min_cell_edge, max_cell_edge / 2)). [Units: m]
   double min_cell_edge = 6.0;
   /// The region to subdivide, in the city's local frame: the union of these polygons (simple
   /// rings; orientation does not matter). Empty: the union of the buildings' bounding
@@ -70,14 +68,6 @@ struct ViewCellOptions {
 
 /// Throws std::invalid_argument naming the first option that is out of its limits.
 void validate(const ViewCellOptions& options);
-
-/// A point in the city's local frame (metres; z absolute, like the city's heights).
-struct Point3 {
-  double x = 0;
-  double y = 0;
-  double z = 0;
-  friend bool operator==(const Point3&, const Point3&) = default;
-};
 
 /// One view cell: the prism over a triangle of free space from zmin to zmax.
 struct ViewCell {
@@ -125,13 +115,13 @@ struct ViewCellMesh {
   std::vector<double> vertex_ground;  ///< ground height at each vertex (absolute)
   std::vector<ViewCell> cells;
   std::vector<CellEdge> edges;
-  std::vector<Point3> samples;  ///< of all edges; see CellEdge::first_sample
-  Box2 bounds;                  ///< of the cells
-  double free_area = 0;         ///< summed cell area (m²)
-  ViewCellOptions options;      ///< as used (region filled in when it was the default)
+  std::vector<Vec3> samples;  ///< of all edges; see CellEdge::first_sample
+  Box2 bounds;                ///< of the cells
+  double free_area = 0;       ///< summed cell area (m²)
+  ViewCellOptions options;    ///< as used (region filled in when it was the default)
   ViewCellStats stats;
 
-  std::span<const Point3> samples_of(const CellEdge& e) const {
+  std::span<const Vec3> samples_of(const CellEdge& e) const {
     return {samples.data() + e.first_sample, e.sample_count};
   }
 };

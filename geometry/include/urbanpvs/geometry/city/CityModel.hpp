@@ -37,7 +37,7 @@ struct OccluderPrism {
 
 /// A triangle in absolute coordinates (terrain).
 struct Triangle3 {
-  std::array<std::array<double, 3>, 3> v;
+  std::array<Vec3, 3> v;
 };
 
 /// One planar surface of the input as it was given (absolute coordinates, local frame): the
@@ -45,7 +45,7 @@ struct Triangle3 {
 /// urbanpvs-validate builds its ground truth from these, never from the occluders derived from
 /// them, so a mistake in deriving occluders cannot hide itself.
 struct Surface3 {
-  std::vector<std::vector<std::array<double, 3>>> rings;
+  std::vector<std::vector<Vec3>> rings;
   /// False for a surface that bounds where the building may be, not where it surely is (a roof
   /// of unknown shape above the eaves): a target of validation, never a blocker.
   bool blocks = true;

@@ -12,11 +12,13 @@
 
 namespace urbanpvs::geometry {
 
+/// How a city is read. The limits of every option are those of read_settings()
+/// (ReadSettings.hpp), the table every tool binds.
 struct ReadOptions {
   /// Height (m) of GeoJSON buildings that carry no height attribute. Unset: such a building is
-  /// an InputError(MissingHeight). [Limit: > 0]
+  /// an InputError(MissingHeight).
   std::optional<double> default_height;
-  /// Height of one storey (m) for building:levels / building:min_level. [Limit: > 0]
+  /// Height of one storey (m) for building:levels / building:min_level.
   double level_height = 3.0;
   /// How GeoJSON coordinates are read; Auto decides from the "crs" member, else from the range.
   enum class Coordinates { Auto, Geographic, Projected } coordinates = Coordinates::Auto;
@@ -25,11 +27,10 @@ struct ReadOptions {
   bool strict = false;
   /// The tallest plausible building above its ground. Taller input is refused
   /// (InputError(Implausible)); objects of unknown height are tested for visibility up to it,
-  /// as tall as they may be. [Units: m] [Limit: > 0]
+  /// as tall as they may be. [Units: m]
   double max_height = 1000.0;
   /// The largest plausible extent of a city (either side of its bounding rectangle); larger
   /// input is refused (InputError(Implausible)) rather than baked for hours. [Units: m]
-  /// [Limit: > 0]
   double max_extent = 300000.0;
 };
 

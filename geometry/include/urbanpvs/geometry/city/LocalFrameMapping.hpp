@@ -25,9 +25,9 @@ class LocalFrameMapping {
 
   /// Input (x, y, z) -> local. For geographic input x = lon, y = lat (degrees), z = height; the
   /// local z keeps the input height (the earth's curvature, 8 cm at 1 km, is ignored for z).
-  std::array<double, 3> to_local(double x, double y, double z) const;
+  Vec3 to_local(double x, double y, double z) const;
   /// Local -> input coordinates (inverse of to_local).
-  std::array<double, 3> to_input(double x, double y, double z) const;
+  Vec3 to_input(double x, double y, double z) const;
 
   const LocalFrame& frame() const { return frame_; }
 

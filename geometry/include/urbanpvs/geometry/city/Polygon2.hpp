@@ -10,29 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "urbanpvs/geometry/city/Vector.hpp"
+
 namespace urbanpvs::geometry {
-
-struct Vec2 {
-  double x = 0;
-  double y = 0;
-  friend bool operator==(const Vec2&, const Vec2&) = default;
-};
-
-inline Vec2 operator-(Vec2 a, Vec2 b) {
-  return {a.x - b.x, a.y - b.y};
-}
-inline Vec2 operator+(Vec2 a, Vec2 b) {
-  return {a.x + b.x, a.y + b.y};
-}
-inline Vec2 operator*(double s, Vec2 a) {
-  return {s * a.x, s * a.y};
-}
-inline double cross(Vec2 a, Vec2 b) {
-  return a.x * b.y - a.y * b.x;
-}
-inline double dot(Vec2 a, Vec2 b) {
-  return a.x * b.x + a.y * b.y;
-}
 
 /// An open ring: the closing edge from back() to front() is implied, no point is repeated.
 using Ring = std::vector<Vec2>;

@@ -11,15 +11,16 @@
 
 namespace urbanpvs::geometry {
 
+/// The limits of every option are those of block_settings() (BlockSettings.hpp).
 struct BlockOptions {
   /// Footprints closer than this (m) fuse, and gaps narrower than it inside a block are closed
   /// (like Umbra's "smallest hole"). Shared walls in real data are often not bit-identical; the
   /// default closes the slivers of digitizing noise, yet no slit a person could see through.
-  /// [Limit: >= 0] [Units: m]
+  /// [Units: m]
   double gap_tolerance = 0.05;
   /// Occluder tops are rounded *down* to a multiple of this (conservative: lower occluders hide
   /// less), which merges near-equal heights into one level. 0 keeps exact heights.
-  /// [Limit: >= 0] [Units: m]
+  /// [Units: m]
   double height_step = 0.1;
 };
 

@@ -16,7 +16,7 @@
 #include "urbanpvs/preprocess/visibility/CellMapRenderer.hpp"
 #include "urbanpvs/preprocess/visibility/CullMap.hpp"
 #include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
-#include "urbanpvs/runtime/pvs_writer.hpp"
+#include "urbanpvs/runtime/PvsWriter.hpp"
 
 namespace urbanpvs::preprocess {
 

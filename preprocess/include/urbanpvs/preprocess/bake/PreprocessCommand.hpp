@@ -12,12 +12,12 @@
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/preprocess/bake/BakeScene.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
-#include "urbanpvs/runtime/exit_codes.hpp"
+#include "urbanpvs/runtime/ExitCodes.hpp"
 
 namespace urbanpvs::preprocess {
 
 /// The exit codes urbanpvs-preprocess uses besides 0, from the tools' one table
-/// (urbanpvs/runtime/exit_codes.hpp); input errors exit with geometry::exit_code() (10–18).
+/// (urbanpvs/runtime/ExitCodes.hpp); input errors exit with geometry::exit_code() (10–18).
 inline constexpr int kExitUsage = exit_code::kUsage;  ///< bad command line or config; journal
 inline constexpr int kExitProcessing = exit_code::kProcessing;  ///< the bake itself failed
 inline constexpr int kExitOutput = exit_code::kOutput;  ///< output, journal or report unwritable

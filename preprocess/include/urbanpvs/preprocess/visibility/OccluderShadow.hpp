@@ -16,10 +16,7 @@ namespace urbanpvs::preprocess {
 
 using geometry::Box2;
 using geometry::Vec2;
-
-struct Vec3 {
-  double x = 0, y = 0, z = 0;
-};
+using geometry::Vec3;
 
 /// A convex polygon of a shadow, stored inline: shadows are made by the ten thousand per cell
 /// and must not touch the heap. Clipping a convex polygon by a half-plane adds at most one

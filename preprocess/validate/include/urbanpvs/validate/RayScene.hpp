@@ -29,18 +29,15 @@ namespace urbanpvs::validate {
 using geometry::Box2;
 using geometry::Box3;
 using geometry::Vec2;
-
-struct Point3 {
-  double x = 0, y = 0, z = 0;
-};
+using geometry::Vec3;
 
 /// Points spread over one planar surface: every vertex, points along every ring edge and a
 /// lattice over the inside (holes left out), no two neighbours farther apart than `spacing`
 /// (m, > 0). A surface of no area gives its vertices.
-std::vector<Point3> surface_points(const geometry::Surface3& surface, double spacing);
+std::vector<Vec3> surface_points(const geometry::Surface3& surface, double spacing);
 
 /// The same over the six faces of a box.
-std::vector<Point3> box_points(const Box3& box, double spacing);
+std::vector<Vec3> box_points(const Box3& box, double spacing);
 
 /// Queries keep scratch state (visit stamps, the last blocker): one RayScene per thread.
 class RayScene {
@@ -60,12 +57,12 @@ class RayScene {
   /// True when the segment p→q (q a point of `object`, or near one) reaches `object` or q
   /// before any blocker: no surface of another object and no skirt (the earth) lies on it up
   /// to kCoincident before q, or up to where it first meets `object` itself.
-  bool reaches(const Point3& p, const Point3& q, std::uint32_t object) const;
+  bool reaches(const Vec3& p, const Vec3& q, std::uint32_t object) const;
 
   /// Every object the segment p→q meets before any blocker stops it, with the parameter in
   /// [0, 1] where it meets it: the object of the first surface it meets (none when that is a
   /// skirt), and the objects without blockers whose box it enters before that.
-  void first_met(const Point3& p, const Point3& q,
+  void first_met(const Vec3& p, const Vec3& q,
                  std::vector<std::pair<std::uint32_t, double>>& met) const;
 
   const Box2& bounds() const { return bounds_; }
@@ -74,11 +71,11 @@ class RayScene {
   static constexpr double kNone = 2;  ///< "no hit": beyond every segment parameter
   /// One blocker polygon, its rings projected to the plane that drops axis `drop`.
   struct Face {
-    std::array<double, 3> normal;  // unit
-    double offset;                 // normal · x on the plane
+    Vec3 normal;    // unit
+    double offset;  // normal · x on the plane
     int drop;
     std::uint32_t first_ring, end_ring;  // into ring_start_
-    std::array<double, 3> lo, hi;        // bounding box
+    Vec3 lo, hi;                         // bounding box
     std::uint32_t object;
     bool blocks = true;  // false: a surface the building may reach, a target only
   };
@@ -90,21 +87,18 @@ class RayScene {
   static constexpr std::uint32_t kKindMask = 3u << 30;
 
   struct Segment {
-    Point3 p, d;                   // p + t·d for t in [0, 1]
-    std::array<double, 3> lo, hi;  // bounding box of the part for t in [0, t_max]
-    Segment(const Point3& from, const Point3& to, double t_max);
+    Vec3 p, d;    // p + t·d for t in [0, 1]
+    Vec3 lo, hi;  // bounding box of the part for t in [0, t_max]
+    Segment(const Vec3& from, const Vec3& to, double t_max);
   };
 
   /// Makes `face` the blocker polygon of the rings; false when they have no area.
-  bool make_face(const std::vector<std::vector<std::array<double, 3>>>& rings, std::uint32_t object,
-                 Face& face);
-  void add_face(const std::vector<std::vector<std::array<double, 3>>>& rings, std::uint32_t object,
-                bool blocks);
+  bool make_face(const std::vector<std::vector<Vec3>>& rings, std::uint32_t object, Face& face);
+  void add_face(const std::vector<std::vector<Vec3>>& rings, std::uint32_t object, bool blocks);
   /// Skirts below the bottom edges of a wall polygon whose foot is at most `highest_foot`,
   /// reaching down to `deep`.
-  void add_skirts(const std::vector<std::array<double, 3>>& wall,
-                  const std::array<double, 3>& normal, double highest_foot, double deep,
-                  std::uint32_t object);
+  void add_skirts(const std::vector<Vec3>& wall, const Vec3& normal, double highest_foot,
+                  double deep, std::uint32_t object);
   bool inside_rings(std::uint32_t first_ring, std::uint32_t end_ring, Vec2 p) const;
   /// Parameter in (0, t_max) where the segment meets the face, else kNone.
   double face_hit(const Face& f, const Segment& s, double t_max) const;

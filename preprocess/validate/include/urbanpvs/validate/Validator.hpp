@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "urbanpvs/geometry/city/CityModel.hpp"
-#include "urbanpvs/runtime/pvs_file.hpp"
+#include "urbanpvs/runtime/PvsFile.hpp"
 #include "urbanpvs/validate/RayScene.hpp"
 
 namespace urbanpvs::validate {
@@ -44,10 +44,10 @@ struct ValidationOptions {
 
 struct Miss {
   std::uint32_t cell = 0;
-  Point3 viewpoint;
+  Vec3 viewpoint;
   std::uint32_t object = 0;
   std::string object_id;
-  Point3 target;  ///< the point of the object the segments reached
+  Vec3 target;  ///< the point of the object the segments reached
 };
 
 struct ValidationReport {
@@ -63,7 +63,7 @@ struct ValidationReport {
 /// the segment v→q and four parallel ones crack/2 to its sides (horizontally and vertically,
 /// across it) all reach it (RayScene::reaches). Why this closes cracks and hides no wider view:
 /// see Validator.cpp. Adds the segments cast to *rays when given.
-bool target_seen(const RayScene& scene, const Point3& v, const Point3& q, std::uint32_t object,
+bool target_seen(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint32_t object,
                  double crack, std::size_t* rays = nullptr);
 
 /// Throws std::runtime_error when the file does not belong to the city (object count or ids

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/geometry/city/ReadSettings.hpp"
+
+namespace urbanpvs::geometry {
+namespace {
+
+SettingTable<ReadOptions> make_table() {
+  using S = SettingStage;
+  using R = ReadOptions;
+  SettingTable<R> t;
+  // The default height is optional: "none" (the default) leaves buildings without a height as
+  // objects that occlude nothing.
+  auto height = number_setting<R>(
+      "default-height", "m", S::Read, 0.01, 1e5,
+      "Height of GeoJSON buildings without height attributes; without it they are objects that "
+      "occlude nothing, tested up to --max-height",
+      {});
+  height.default_text = "none";
+  height.get = [](const R& r) {
+    return r.default_height ? exact(*r.default_height) : std::string("none");
+  };
+  height.set = [s = height](R& r, const std::string& text) {
+    if (text == "none") {
+      r.default_height.reset();
+      return;
+    }
+    const double v = setting_detail::parse_number(s.key, text);
+    setting_detail::check_limits(s, v, text);
+    r.default_height = v;
+  };
+  t.push_back(std::move(height));
+  t.push_back(number_setting<R>("level-height", "m", S::Read, 0.5, 100,
+                                "Height of one storey, for building:levels",
+                                [](R& r) -> double& { return r.level_height; }));
+  t.push_back(choice_setting<R::Coordinates, R>(
+      "coordinates", S::Read, {"auto", "geographic", "projected"},
+      "GeoJSON coordinates: lon/lat, projected metres, or decided from the values",
+      [](R& r) -> R::Coordinates& { return r.coordinates; }));
+  t.push_back(flag_setting<R>("strict", S::Read,
+                              "Refuse geometry that needs repair (exit 14) instead of repairing "
+                              "it or keeping the building as an object that occludes nothing",
+                              [](R& r) -> bool& { return r.strict; }));
+  t.push_back(number_setting<R>("max-height", "m", S::Read, 1, 1e5,
+                                "Tallest plausible building: taller input is refused; buildings "
+                                "of unknown height are tested up to it",
+                                [](R& r) -> double& { return r.max_height; }));
+  return t;
+}
+
+}  // namespace
+
+const SettingTable<ReadOptions>& read_settings() {
+  static const SettingTable<ReadOptions> table = make_table();
+  return table;
+}
+
+}  // namespace urbanpvs::geometry

@@ -1,0 +1,21 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/geometry/occluders/BlockSettings.hpp"
+
+namespace urbanpvs::geometry {
+
+const SettingTable<BlockOptions>& block_settings() {
+  using S = SettingStage;
+  using B = BlockOptions;
+  static const SettingTable<B> table = {
+      number_setting<B>("gap", "m", S::Occluders, 0, 10,
+                        "Footprints closer than this fuse into one block, and into one obstacle "
+                        "for the view cells",
+                        [](B& b) -> double& { return b.gap_tolerance; }),
+      number_setting<B>("height-step", "m", S::Occluders, 0, 100,
+                        "Occluder tops are rounded down to a multiple of this (0: exact heights)",
+                        [](B& b) -> double& { return b.height_step; }),
+  };
+  return table;
+}
+
+}  // namespace urbanpvs::geometry

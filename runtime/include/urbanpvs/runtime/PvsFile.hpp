@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// PvsFile: read-only access to a .pvs file held in memory — point location, per-cell PVS and
+/// the object / cell tables.
+///
+/// Safety on untrusted input: open() validates everything before it reports kOk — header,
+/// section table, checksums (unless disabled in LoadOptions), every count and offset against the
+/// buffer (64-bit, overflow-checked), every string as UTF-8, every cell's PVS encoding (decoded
+/// once, checked sorted, in range and within the diff-chain bound) and the point-location grid
+/// (checked to be exactly the one the writer builds). A buffer that passes never makes a later
+/// call read out of bounds; one that fails leaves `out` closed. Every function is noexcept and
+/// the library never aborts on bad input. The loader is fuzzed (tests/runtime/fuzz).
+///
+/// Thread safety: after open() returns, all const member functions may be called concurrently
+/// from any number of threads (they only read the buffer; decode_pvs writes only the caller's
+/// buffer). open()/move assignment must not race with readers of the same object.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "urbanpvs/runtime/Status.hpp"
+#include "urbanpvs/runtime/Types.hpp"
+
+namespace urbanpvs::runtime {
+
+namespace detail {
+struct PvsFileData;  // the validated views into the buffer (src/PvsFileData.hpp)
+}  // namespace detail
+
+/// What went wrong in open(), for messages ("checksum mismatch in section 'pvs'").
+struct LoadError {
+  Status status = Status::kOk;
+  /// Section concerned (format::SectionId value), 0 when the header is at fault.
+  std::uint32_t section_id = 0;
+  /// Static English description of the failed check (never null, "" when status is kOk).
+  const char* detail = "";
+};
+
+struct LoadOptions {
+  /// Verify the header and section CRC32Cs. Turning it off only makes sense for fuzzing the
+  /// structural validation behind the checksums (which always runs) or for files the caller
+  /// has already verified; a corrupted but structurally valid file then loads with wrong data.
+  bool verify_checksums = true;
+};
+
+/// An object (building) as stored: its source id and its bounding box in the local frame.
+struct ObjectInfo {
+  std::string_view source_id;  ///< points into the file's buffer; valid while the file is open
+  Bbox bbox{};
+};
+
+/// The coordinate frame of the file. Stored coordinates are local = input − origin; for a
+/// geographic (WGS84) input "input" means the east-north-up frame at geodetic_origin.
+struct FrameInfo {
+  std::string_view crs;  ///< e.g. "EPSG:7415", may be empty; points into the buffer
+  bool geographic = false;
+  GeodeticOrigin geodetic_origin{};
+  std::array<double, 3> origin{};  ///< local-frame origin, in input coordinates
+};
+
+/// One entry of the section table.
+struct SectionInfo {
+  std::uint32_t id = 0;
+  std::uint32_t crc32c = 0;
+  std::uint64_t offset = 0;
+  std::uint64_t length = 0;
+};
+
+/// How one cell's PVS is encoded (for inspection and statistics).
+struct PvsEncodingInfo {
+  std::uint8_t kind = 0;              ///< format::PvsKind value
+  std::uint32_t reference = kNoCell;  ///< reference cell of a kDiff cell, else kNoCell
+  std::uint32_t chain_length = 0;     ///< number of kDiff steps to reach a full cell
+  std::uint32_t payload_bytes = 0;    ///< bytes of this cell's payload
+};
+
+/// A contiguous run of object indices (no ownership).
+struct IndexSpan {
+  const std::uint32_t* data = nullptr;
+  std::size_t size = 0;
+  const std::uint32_t* begin() const noexcept { return data; }
+  const std::uint32_t* end() const noexcept { return data + size; }
+};
+
+class PvsFile {
+ public:
+  PvsFile() noexcept;
+  ~PvsFile();
+  PvsFile(PvsFile&& other) noexcept;
+  PvsFile& operator=(PvsFile&& other) noexcept;
+  PvsFile(const PvsFile&) = delete;
+  PvsFile& operator=(const PvsFile&) = delete;
+
+  /// Validates and opens a file held in `data[0, size)`. The bytes are NOT copied: the caller
+  /// keeps them alive and unchanged for as long as `out` (or anything it returned) is used. The
+  /// buffer needs no particular alignment. On failure `out` is closed and `error` (if given)
+  /// says why. Allocates a few small tables (O(sections + metadata entries)) and a scratch
+  /// buffer of O(largest PVS) for validation: kOutOfMemory if that fails.
+  static Status open(const void* data, std::size_t size, PvsFile& out,
+                     const LoadOptions& options = {}, LoadError* error = nullptr) noexcept;
+
+  /// As open(), but `out` takes ownership of `bytes` (moved in; left empty on every path).
+  static Status open_owned(std::vector<std::byte>&& bytes, PvsFile& out,
+                           const LoadOptions& options = {}, LoadError* error = nullptr) noexcept;
+
+  /// Reads the whole file at `path` (see read_file) and opens it owning the bytes.
+  /// kIoError when the file cannot be read.
+  static Status open_file(const char* path, PvsFile& out, const LoadOptions& options = {},
+                          LoadError* error = nullptr) noexcept;
+
+  /// True after a successful open. Every accessor below requires an open file; on a closed
+  /// one counts are 0, lookups answer kNoCell / false and decode_pvs kOutOfRange.
+  bool is_open() const noexcept;
+
+  std::uint16_t major_version() const noexcept;
+  std::uint16_t minor_version() const noexcept;
+  /// Size of the file in bytes (== the buffer size).
+  std::size_t file_size() const noexcept;
+  std::size_t section_count() const noexcept;
+  /// Section table entry `index` (< section_count()); a zeroed entry when out of range.
+  SectionInfo section(std::size_t index) const noexcept;
+
+  // --- metadata --------------------------------------------------------------------------------
+  FrameInfo frame() const noexcept;
+  BakeSettings settings() const noexcept;
+  /// Number of free-form key/value properties.
+  std::size_t property_count() const noexcept;
+  /// Property `index` (< property_count()); kOutOfRange otherwise. Views point into the buffer.
+  Status property(std::size_t index, std::string_view& key, std::string_view& value) const noexcept;
+
+  // --- coordinates -----------------------------------------------------------------------------
+  /// Input coordinates (CRS of the input, or ENU for geographic inputs) → stored local frame.
+  std::array<double, 3> input_to_local(double x, double y, double z) const noexcept;
+  /// Stored local frame → input coordinates.
+  std::array<double, 3> local_to_input(double x, double y, double z) const noexcept;
+  /// WGS84 latitude/longitude (degrees) and ellipsoidal height (m) → local frame, through the
+  /// stored east-north-up frame. kNotGeographic when the input was not geographic.
+  Status geodetic_to_local(double lat_deg, double lon_deg, double h_m,
+                           std::array<double, 3>& local) const noexcept;
+
+  // --- objects and cells -----------------------------------------------------------------------
+  std::uint32_t object_count() const noexcept;
+  std::uint32_t cell_count() const noexcept;
+  /// Object `index`; kOutOfRange when index >= object_count().
+  Status object(std::uint32_t index, ObjectInfo& out) const noexcept;
+  /// Cell `index`; kOutOfRange when index >= cell_count().
+  Status cell(std::uint32_t index, CellGeometry& out) const noexcept;
+
+  // --- queries ---------------------------------------------------------------------------------
+  /// The cell whose prism contains the local point (x, y, z), or kNoCell. When several cells
+  /// contain it (a point on a shared edge or vertex, overlapping or stacked cells) the lowest
+  /// cell index wins, so the answer is deterministic. z must lie in [z_min, z_max] of the cell:
+  /// a point above or below every prism at (x, y) is outside. Non-finite input → kNoCell.
+  /// Typical cost: one grid lookup and 1–5 triangle tests, no allocation.
+  std::uint32_t locate(double x, double y, double z) const noexcept;
+  /// As locate() but ignoring z (the lowest-index cell whose triangle contains (x, y)).
+  std::uint32_t locate_xy(double x, double y) const noexcept;
+
+  /// Number of objects visible from `cell` (0 when out of range). O(1).
+  std::uint32_t pvs_size(std::uint32_t cell) const noexcept;
+  /// The largest pvs_size() over all cells.
+  std::uint32_t max_pvs_size() const noexcept;
+  /// Sum of pvs_size() over all cells (what plain 32-bit id lists would store).
+  std::uint64_t total_pvs_entries() const noexcept;
+  /// Number of uint32_t slots decode_pvs() needs: max_pvs_size(), or twice that when the file
+  /// has chains of two or more diff steps (the second half is decoding scratch).
+  std::size_t decode_buffer_size() const noexcept;
+  /// Writes the sorted object indices visible from `cell` to `buffer[0, count)`. `capacity`
+  /// must be >= decode_buffer_size() (kBufferTooSmall otherwise; the contents of the whole
+  /// buffer are unspecified afterwards). No allocation; O(|PVS| × chain length).
+  Status decode_pvs(std::uint32_t cell, std::uint32_t* buffer, std::size_t capacity,
+                    std::size_t& count) const noexcept;
+  /// Whether `object` is in the PVS of `cell` (false when either is out of range). No
+  /// allocation and no decode buffer: scans the encoded lists with early exit.
+  bool is_visible(std::uint32_t cell, std::uint32_t object) const noexcept;
+  /// How the PVS of `cell` is stored; kOutOfRange when cell >= cell_count().
+  Status pvs_encoding(std::uint32_t cell, PvsEncodingInfo& out) const noexcept;
+
+ private:
+  static Status open_data(std::unique_ptr<detail::PvsFileData> data, PvsFile& out,
+                          const LoadOptions& options, LoadError* error) noexcept;
+
+  std::unique_ptr<const detail::PvsFileData> data_;
+};
+
+/// A reusable decoder: owns a buffer of decode_buffer_size() slots, allocated once in the
+/// constructor, so decoding PVSs in a loop allocates nothing. One decoder per thread; the file
+/// must outlive it.
+class PvsDecoder {
+ public:
+  /// Allocates the scratch buffer. If that fails, decode() returns kOutOfMemory.
+  explicit PvsDecoder(const PvsFile& file) noexcept;
+
+  /// Decodes the PVS of `cell`; the result is in view() until the next decode().
+  Status decode(std::uint32_t cell) noexcept;
+  /// The last decoded PVS (empty before the first successful decode()).
+  IndexSpan view() const noexcept { return {buffer_.get(), size_}; }
+  const std::uint32_t* begin() const noexcept { return buffer_.get(); }
+  const std::uint32_t* end() const noexcept { return buffer_.get() + size_; }
+  std::size_t size() const noexcept { return size_; }
+
+ private:
+  const PvsFile* file_;
+  std::unique_ptr<std::uint32_t[]> buffer_;
+  std::size_t capacity_ = 0;
+  std::size_t size_ = 0;
+};
+
+}  // namespace urbanpvs::runtime

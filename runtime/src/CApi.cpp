@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+// The C API: each function forwards to PvsFile after checking its pointers.
+#include <new>
+
+#include "urbanpvs/runtime/PvsFile.hpp"
+#include "urbanpvs/urbanpvs.h"
+
+using urbanpvs::runtime::CellGeometry;
+using urbanpvs::runtime::ObjectInfo;
+using urbanpvs::runtime::PvsFile;
+using urbanpvs::runtime::Status;
+
+struct urbanpvs_file {
+  PvsFile file;
+};
+
+namespace {
+
+#define URBANPVS_SAME(c, cpp) \
+  static_assert(static_cast<int>(c) == static_cast<int>(Status::cpp), #c " differs from " #cpp)
+URBANPVS_SAME(URBANPVS_OK, kOk);
+URBANPVS_SAME(URBANPVS_BAD_MAGIC, kBadMagic);
+URBANPVS_SAME(URBANPVS_UNSUPPORTED_VERSION, kUnsupportedVersion);
+URBANPVS_SAME(URBANPVS_UNSUPPORTED_FEATURE, kUnsupportedFeature);
+URBANPVS_SAME(URBANPVS_TRUNCATED, kTruncated);
+URBANPVS_SAME(URBANPVS_TRAILING_BYTES, kTrailingBytes);
+URBANPVS_SAME(URBANPVS_HEADER_CHECKSUM_MISMATCH, kHeaderChecksumMismatch);
+URBANPVS_SAME(URBANPVS_SECTION_CHECKSUM_MISMATCH, kSectionChecksumMismatch);
+URBANPVS_SAME(URBANPVS_MALFORMED_HEADER, kMalformedHeader);
+URBANPVS_SAME(URBANPVS_MISSING_SECTION, kMissingSection);
+URBANPVS_SAME(URBANPVS_MALFORMED_SECTION, kMalformedSection);
+URBANPVS_SAME(URBANPVS_OUT_OF_RANGE, kOutOfRange);
+URBANPVS_SAME(URBANPVS_BUFFER_TOO_SMALL, kBufferTooSmall);
+URBANPVS_SAME(URBANPVS_OUT_OF_MEMORY, kOutOfMemory);
+URBANPVS_SAME(URBANPVS_IO_ERROR, kIoError);
+URBANPVS_SAME(URBANPVS_NOT_GEOGRAPHIC, kNotGeographic);
+URBANPVS_SAME(URBANPVS_INVALID_ARGUMENT, kInvalidArgument);
+#undef URBANPVS_SAME
+static_assert(URBANPVS_NO_CELL == urbanpvs::runtime::kNoCell, "URBANPVS_NO_CELL differs");
+
+urbanpvs_status to_c(Status s) noexcept {
+  return static_cast<urbanpvs_status>(s);
+}
+
+template <class Open>
+urbanpvs_status open_with(urbanpvs_file** out, Open open) noexcept {
+  if (out == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  *out = nullptr;
+  urbanpvs_file* handle = new (std::nothrow) urbanpvs_file;
+  if (handle == nullptr) return URBANPVS_OUT_OF_MEMORY;
+  const Status status = open(handle->file);
+  if (status != Status::kOk) {
+    delete handle;
+    return to_c(status);
+  }
+  *out = handle;
+  return URBANPVS_OK;
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* urbanpvs_status_message(urbanpvs_status status) {
+  return urbanpvs::runtime::status_message(static_cast<Status>(status));
+}
+
+urbanpvs_status urbanpvs_open_memory(const void* data, size_t size, urbanpvs_file** out) {
+  return open_with(out, [&](PvsFile& f) { return PvsFile::open(data, size, f); });
+}
+
+urbanpvs_status urbanpvs_open_file(const char* path, urbanpvs_file** out) {
+  if (path == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  return open_with(out, [&](PvsFile& f) { return PvsFile::open_file(path, f); });
+}
+
+void urbanpvs_close(urbanpvs_file* file) {
+  delete file;
+}
+
+uint32_t urbanpvs_object_count(const urbanpvs_file* file) {
+  return file != nullptr ? file->file.object_count() : 0;
+}
+
+uint32_t urbanpvs_cell_count(const urbanpvs_file* file) {
+  return file != nullptr ? file->file.cell_count() : 0;
+}
+
+uint32_t urbanpvs_locate(const urbanpvs_file* file, double x, double y, double z) {
+  return file != nullptr ? file->file.locate(x, y, z) : URBANPVS_NO_CELL;
+}
+
+urbanpvs_status urbanpvs_input_to_local(const urbanpvs_file* file, double xyz[3]) {
+  if (file == nullptr || xyz == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  const auto local = file->file.input_to_local(xyz[0], xyz[1], xyz[2]);
+  for (int i = 0; i < 3; ++i) xyz[i] = local[i];
+  return URBANPVS_OK;
+}
+
+urbanpvs_status urbanpvs_geodetic_to_local(const urbanpvs_file* file, double lat_deg,
+                                           double lon_deg, double h_m, double local_xyz[3]) {
+  if (file == nullptr || local_xyz == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  std::array<double, 3> local{};
+  const Status status = file->file.geodetic_to_local(lat_deg, lon_deg, h_m, local);
+  if (status == Status::kOk) {
+    for (int i = 0; i < 3; ++i) local_xyz[i] = local[i];
+  }
+  return to_c(status);
+}
+
+uint32_t urbanpvs_pvs_size(const urbanpvs_file* file, uint32_t cell) {
+  return file != nullptr ? file->file.pvs_size(cell) : 0;
+}
+
+size_t urbanpvs_decode_buffer_size(const urbanpvs_file* file) {
+  return file != nullptr ? file->file.decode_buffer_size() : 0;
+}
+
+urbanpvs_status urbanpvs_pvs(const urbanpvs_file* file, uint32_t cell, uint32_t* buffer,
+                             size_t capacity, size_t* count) {
+  if (file == nullptr || buffer == nullptr || count == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  return to_c(file->file.decode_pvs(cell, buffer, capacity, *count));
+}
+
+int urbanpvs_is_visible(const urbanpvs_file* file, uint32_t cell, uint32_t object) {
+  return file != nullptr && file->file.is_visible(cell, object) ? 1 : 0;
+}
+
+urbanpvs_status urbanpvs_object(const urbanpvs_file* file, uint32_t object, const char** id,
+                                size_t* id_size, double bbox[6]) {
+  if (file == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  ObjectInfo info;
+  const Status status = file->file.object(object, info);
+  if (status != Status::kOk) return to_c(status);
+  if (id != nullptr) *id = info.source_id.data();
+  if (id_size != nullptr) *id_size = info.source_id.size();
+  if (bbox != nullptr) {
+    for (int i = 0; i < 6; ++i) bbox[i] = info.bbox[i];
+  }
+  return URBANPVS_OK;
+}
+
+urbanpvs_status urbanpvs_cell(const urbanpvs_file* file, uint32_t cell, double triangle[6],
+                              double z_range[2], uint32_t neighbours[3]) {
+  if (file == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  CellGeometry c;
+  const Status status = file->file.cell(cell, c);
+  if (status != Status::kOk) return to_c(status);
+  for (int i = 0; i < 3; ++i) {
+    if (triangle != nullptr) {
+      triangle[2 * i] = c.triangle[i].x;
+      triangle[2 * i + 1] = c.triangle[i].y;
+    }
+    if (neighbours != nullptr) neighbours[i] = c.neighbours[i];
+  }
+  if (z_range != nullptr) {
+    z_range[0] = c.z_min;
+    z_range[1] = c.z_max;
+  }
+  return URBANPVS_OK;
+}
+
+}  // extern "C"

@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: MIT
+// PvsFile and PvsDecoder: the query side. Everything here reads views that load() validated.
+#include "urbanpvs/runtime/PvsFile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+#include <utility>
+
+#include "ByteReader.hpp"
+#include "PvsFileData.hpp"
+#include "urbanpvs/runtime/FileIo.hpp"
+
+namespace urbanpvs::runtime {
+namespace {
+
+/// The first (lowest-index) cell of (x, y)'s grid list whose triangle contains the point and,
+/// when `check_z`, whose z range contains z. Lists are ascending and the grid lists every cell
+/// whose box covers the grid cell, so this is the lowest-index containing cell overall.
+std::uint32_t locate_in(const detail::PvsFileData& f, double x, double y, double z,
+                        bool check_z) noexcept {
+  if (!std::isfinite(x) || !std::isfinite(y) || (check_z && std::isnan(z))) return kNoCell;
+  const detail::GridGeometry& g = f.grid.geometry;
+  const std::size_t grid_cell =
+      std::size_t{detail::grid_coordinate(y, g.origin_y, g.size_y, g.ny)} * g.nx +
+      detail::grid_coordinate(x, g.origin_x, g.size_x, g.nx);
+  const std::uint32_t begin = detail::load_u32(f.grid.offsets + 4 * grid_cell);
+  const std::uint32_t end = detail::load_u32(f.grid.offsets + 4 * (grid_cell + 1));
+  for (std::uint32_t e = begin; e < end; ++e) {
+    const std::uint32_t cell = detail::load_u32(f.grid.entries + 4 * std::size_t{e});
+    if (check_z) {
+      double z_min, z_max;
+      detail::z_range_at(f.cells, cell, z_min, z_max);
+      if (!(z >= z_min && z <= z_max)) continue;
+    }
+    if (triangle_contains(detail::triangle_at(f.cells, cell), x, y)) return cell;
+  }
+  return kNoCell;
+}
+
+}  // namespace
+
+PvsFile::PvsFile() noexcept = default;
+PvsFile::~PvsFile() = default;
+PvsFile::PvsFile(PvsFile&& other) noexcept = default;
+PvsFile& PvsFile::operator=(PvsFile&& other) noexcept = default;
+
+Status PvsFile::open_data(std::unique_ptr<detail::PvsFileData> data, PvsFile& out,
+                          const LoadOptions& options, LoadError* error) noexcept {
+  LoadError local;
+  const Status status = detail::load(*data, options, error != nullptr ? *error : local);
+  out.data_.reset();
+  if (status == Status::kOk) out.data_ = std::move(data);
+  return status;
+}
+
+Status PvsFile::open(const void* data, std::size_t size, PvsFile& out, const LoadOptions& options,
+                     LoadError* error) noexcept {
+  if (data == nullptr && size != 0) {
+    out.data_.reset();
+    if (error != nullptr) *error = {Status::kInvalidArgument, 0, "null buffer"};
+    return Status::kInvalidArgument;
+  }
+  std::unique_ptr<detail::PvsFileData> file(new (std::nothrow) detail::PvsFileData);
+  if (!file) {
+    out.data_.reset();
+    if (error != nullptr) *error = {Status::kOutOfMemory, 0, "out of memory while loading"};
+    return Status::kOutOfMemory;
+  }
+  file->data = static_cast<const unsigned char*>(data);
+  file->size = size;
+  return open_data(std::move(file), out, options, error);
+}
+
+Status PvsFile::open_owned(std::vector<std::byte>&& bytes, PvsFile& out, const LoadOptions& options,
+                           LoadError* error) noexcept {
+  std::vector<std::byte> owned = std::move(bytes);
+  std::unique_ptr<detail::PvsFileData> file(new (std::nothrow) detail::PvsFileData);
+  if (!file) {
+    out.data_.reset();
+    if (error != nullptr) *error = {Status::kOutOfMemory, 0, "out of memory while loading"};
+    return Status::kOutOfMemory;
+  }
+  file->owned = std::move(owned);  // a vector move keeps the data pointer
+  file->data = reinterpret_cast<const unsigned char*>(file->owned.data());
+  file->size = file->owned.size();
+  return open_data(std::move(file), out, options, error);
+}
+
+Status PvsFile::open_file(const char* path, PvsFile& out, const LoadOptions& options,
+                          LoadError* error) noexcept {
+  std::vector<std::byte> bytes;
+  const Status status = read_file(path, bytes);
+  if (status != Status::kOk) {
+    out.data_.reset();
+    if (error != nullptr) *error = {status, 0, "cannot read the file"};
+    return status;
+  }
+  return open_owned(std::move(bytes), out, options, error);
+}
+
+bool PvsFile::is_open() const noexcept {
+  return data_ != nullptr;
+}
+std::uint16_t PvsFile::major_version() const noexcept {
+  return data_ ? data_->container.major : 0;
+}
+std::uint16_t PvsFile::minor_version() const noexcept {
+  return data_ ? data_->container.minor : 0;
+}
+std::size_t PvsFile::file_size() const noexcept {
+  return data_ ? data_->size : 0;
+}
+
+std::size_t PvsFile::section_count() const noexcept {
+  return data_ ? data_->container.sections.size() : 0;
+}
+
+SectionInfo PvsFile::section(std::size_t index) const noexcept {
+  if (!data_ || index >= data_->container.sections.size()) return {};
+  return data_->container.sections[index];
+}
+
+FrameInfo PvsFile::frame() const noexcept {
+  return data_ ? data_->metadata.frame : FrameInfo{};
+}
+BakeSettings PvsFile::settings() const noexcept {
+  return data_ ? data_->metadata.settings : BakeSettings{};
+}
+
+std::size_t PvsFile::property_count() const noexcept {
+  return data_ ? data_->metadata.properties.size() : 0;
+}
+
+Status PvsFile::property(std::size_t index, std::string_view& key,
+                         std::string_view& value) const noexcept {
+  if (index >= property_count()) return Status::kOutOfRange;
+  key = data_->metadata.properties[index].first;
+  value = data_->metadata.properties[index].second;
+  return Status::kOk;
+}
+
+std::array<double, 3> PvsFile::input_to_local(double x, double y, double z) const noexcept {
+  const std::array<double, 3> o = frame().origin;
+  return {x - o[0], y - o[1], z - o[2]};
+}
+
+std::array<double, 3> PvsFile::local_to_input(double x, double y, double z) const noexcept {
+  const std::array<double, 3> o = frame().origin;
+  return {x + o[0], y + o[1], z + o[2]};
+}
+
+Status PvsFile::geodetic_to_local(double lat_deg, double lon_deg, double h_m,
+                                  std::array<double, 3>& local) const noexcept {
+  if (!data_ || !data_->metadata.frame.geographic) return Status::kNotGeographic;
+  const std::array<double, 3> enu = data_->geodetic_frame.forward(lat_deg, lon_deg, h_m);
+  local = input_to_local(enu[0], enu[1], enu[2]);
+  return Status::kOk;
+}
+
+std::uint32_t PvsFile::object_count() const noexcept {
+  return data_ ? data_->objects.count : 0;
+}
+std::uint32_t PvsFile::cell_count() const noexcept {
+  return data_ ? data_->cells.count : 0;
+}
+
+Status PvsFile::object(std::uint32_t index, ObjectInfo& out) const noexcept {
+  if (index >= object_count()) return Status::kOutOfRange;
+  out = detail::object_at(data_->objects, index);
+  return Status::kOk;
+}
+
+Status PvsFile::cell(std::uint32_t index, CellGeometry& out) const noexcept {
+  if (index >= cell_count()) return Status::kOutOfRange;
+  out = detail::cell_at(data_->cells, index);
+  return Status::kOk;
+}
+
+std::uint32_t PvsFile::locate(double x, double y, double z) const noexcept {
+  return data_ ? locate_in(*data_, x, y, z, true) : kNoCell;
+}
+
+std::uint32_t PvsFile::locate_xy(double x, double y) const noexcept {
+  return data_ ? locate_in(*data_, x, y, 0, false) : kNoCell;
+}
+
+std::uint32_t PvsFile::pvs_size(std::uint32_t cell) const noexcept {
+  detail::PayloadHeader header;
+  if (!data_ || !detail::read_payload_header(data_->pvs.section, cell, header)) return 0;
+  return header.count;
+}
+
+std::uint32_t PvsFile::max_pvs_size() const noexcept {
+  return data_ ? data_->pvs.max_pvs_size : 0;
+}
+std::uint64_t PvsFile::total_pvs_entries() const noexcept {
+  return data_ ? data_->pvs.total_entries : 0;
+}
+std::size_t PvsFile::decode_buffer_size() const noexcept {
+  return data_ ? data_->decode_buffer_size : 0;
+}
+
+Status PvsFile::decode_pvs(std::uint32_t cell, std::uint32_t* buffer, std::size_t capacity,
+                           std::size_t& count) const noexcept {
+  if (cell >= cell_count()) return Status::kOutOfRange;
+  if (buffer == nullptr) return Status::kInvalidArgument;
+  if (capacity < data_->decode_buffer_size) return Status::kBufferTooSmall;
+  const std::size_t half = std::max<std::size_t>(data_->pvs.max_pvs_size, 1);
+  return detail::decode_cell(data_->pvs.section, cell, buffer, half, count);
+}
+
+bool PvsFile::is_visible(std::uint32_t cell, std::uint32_t object) const noexcept {
+  if (cell >= cell_count() || object >= object_count()) return false;
+  return detail::cell_contains(data_->pvs.section, cell, object);
+}
+
+Status PvsFile::pvs_encoding(std::uint32_t cell, PvsEncodingInfo& out) const noexcept {
+  if (cell >= cell_count()) return Status::kOutOfRange;
+  detail::Chain chain;
+  if (!detail::resolve_chain(data_->pvs.section, cell, chain)) return Status::kMalformedSection;
+  const detail::PayloadHeader& h = chain.headers[0];
+  out.kind = static_cast<std::uint8_t>(h.kind);
+  out.reference = chain.diff_steps > 0 ? chain.diffs[0].reference : kNoCell;
+  out.chain_length = chain.diff_steps;
+  const std::uint32_t begin = detail::load_u32(data_->pvs.section.offsets + 4 * std::size_t{cell});
+  const std::uint32_t end =
+      detail::load_u32(data_->pvs.section.offsets + 4 * (std::size_t{cell} + 1));
+  out.payload_bytes = end - begin;
+  return Status::kOk;
+}
+
+PvsDecoder::PvsDecoder(const PvsFile& file) noexcept
+    : file_(&file), capacity_(file.decode_buffer_size()) {
+  buffer_.reset(new (std::nothrow) std::uint32_t[std::max<std::size_t>(capacity_, 1)]);
+  if (!buffer_) capacity_ = 0;
+}
+
+Status PvsDecoder::decode(std::uint32_t cell) noexcept {
+  size_ = 0;
+  if (!buffer_) return Status::kOutOfMemory;
+  std::size_t count = 0;
+  const Status status = file_->decode_pvs(cell, buffer_.get(), capacity_, count);
+  if (status == Status::kOk) size_ = count;
+  return status;
+}
+
+}  // namespace urbanpvs::runtime

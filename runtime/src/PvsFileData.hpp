@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+// What a PvsFile holds once validated: the bytes (owned or borrowed) and a view per section.
+
+#include <cstddef>
+#include <vector>
+
+#include "Container.hpp"
+#include "Sections.hpp"
+#include "urbanpvs/runtime/GeodeticFrame.hpp"
+
+namespace urbanpvs::runtime::detail {
+
+struct PvsFileData {
+  std::vector<std::byte> owned;  ///< empty for PvsFile::open: the caller owns the bytes
+  const unsigned char* data = nullptr;
+  std::size_t size = 0;
+  ContainerInfo container;
+  MetadataView metadata;
+  ObjectsView objects;
+  CellsView cells;
+  GridView grid;
+  PvsView pvs;
+  std::size_t decode_buffer_size = 0;
+  GeodeticFrame geodetic_frame{GeodeticOrigin{}};  ///< from the metadata, for geographic files
+};
+
+/// Validates `file.data[0, file.size)` and fills the views. Never throws: allocation failures
+/// become kOutOfMemory.
+Status load(PvsFileData& file, const LoadOptions& options, LoadError& error) noexcept;
+
+}  // namespace urbanpvs::runtime::detail

@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// encode(): validate the bake, build the point-location grid, write the five sections.
+#include "urbanpvs/runtime/PvsWriter.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "Container.hpp"
+#include "PointLocationGrid.hpp"
+#include "Sections.hpp"
+#include "Utf8.hpp"
+#include "urbanpvs/runtime/Format.hpp"
+
+namespace urbanpvs::runtime {
+namespace {
+
+bool valid_string(const std::string& s) {
+  return s.size() <= UINT32_MAX &&
+         detail::is_valid_utf8(reinterpret_cast<const unsigned char*>(s.data()), s.size());
+}
+
+bool all_finite(std::initializer_list<double> values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+std::string validate_metadata(const Metadata& m) {
+  const Frame& f = m.frame;
+  if (!valid_string(f.crs)) return "metadata: CRS is not valid UTF-8";
+  if (!all_finite({f.origin[0], f.origin[1], f.origin[2], f.geodetic_origin.lat_deg,
+                   f.geodetic_origin.lon_deg, f.geodetic_origin.h_m}) ||
+      std::fabs(f.geodetic_origin.lat_deg) > 90) {
+    return "metadata: frame origin not finite (or latitude beyond ±90°)";
+  }
+  const BakeSettings& s = m.settings;
+  if (!all_finite({s.epsilon_m, s.pixel_size_m, s.max_cell_edge_m, s.eye_min_m, s.eye_max_m})) {
+    return "metadata: bake settings not finite";
+  }
+  if (m.properties.size() > UINT32_MAX) return "metadata: too many properties";
+  for (std::size_t i = 0; i < m.properties.size(); ++i) {
+    if (!valid_string(m.properties[i].first) || !valid_string(m.properties[i].second)) {
+      return "metadata: property " + std::to_string(i) + " is not valid UTF-8";
+    }
+  }
+  return {};
+}
+
+std::string validate_object(const ObjectRecord& o, std::size_t i) {
+  const std::string where = "object " + std::to_string(i) + ": ";
+  if (!valid_string(o.source_id)) return where + "source id is not valid UTF-8";
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(o.bbox[k]) || !std::isfinite(o.bbox[k + 3]) || o.bbox[k] > o.bbox[k + 3]) {
+      return where + "bbox not finite or min > max";
+    }
+  }
+  return {};
+}
+
+std::string validate_cell(const CellRecord& c, std::size_t i, std::size_t cells,
+                          std::size_t objects) {
+  const std::string where = "cell " + std::to_string(i) + ": ";
+  for (const Point2& p : c.triangle) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return where + "triangle not finite";
+  }
+  if (!std::isfinite(c.z_min) || !std::isfinite(c.z_max) || c.z_min > c.z_max) {
+    return where + "z range not finite or z_min > z_max";
+  }
+  for (std::uint32_t n : c.neighbours) {
+    if (n != kNoCell && n >= cells) return where + "neighbour index out of range";
+  }
+  for (std::size_t k = 0; k < c.pvs.size(); ++k) {
+    if (c.pvs[k] >= objects) {
+      return where + "pvs entry " + std::to_string(k) + " is not an object index";
+    }
+    if (k > 0 && c.pvs[k] <= c.pvs[k - 1]) {
+      return where + "pvs not strictly increasing at position " + std::to_string(k);
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string validate(const PvsBake& bake) {
+  if (bake.objects.size() >= UINT32_MAX) return "too many objects (at most 2^32 - 2)";
+  if (bake.cells.size() >= UINT32_MAX) return "too many cells (at most 2^32 - 2)";
+  std::string problem = validate_metadata(bake.meta);
+  for (std::size_t i = 0; problem.empty() && i < bake.objects.size(); ++i) {
+    problem = validate_object(bake.objects[i], i);
+  }
+  for (std::size_t i = 0; problem.empty() && i < bake.cells.size(); ++i) {
+    problem = validate_cell(bake.cells[i], i, bake.cells.size(), bake.objects.size());
+  }
+  return problem;
+}
+
+std::vector<std::byte> encode(const PvsBake& bake, const EncodeOptions& options) {
+  if (const std::string problem = validate(bake); !problem.empty()) throw PvsWriteError(problem);
+  std::vector<std::array<Point2, 3>> triangles;
+  triangles.reserve(bake.cells.size());
+  for (const CellRecord& c : bake.cells) triangles.push_back(c.triangle);
+  using format::SectionId;
+  std::vector<detail::SectionBytes> sections;
+  sections.emplace_back(static_cast<std::uint32_t>(SectionId::kMetadata),
+                        detail::write_metadata(bake.meta));
+  sections.emplace_back(static_cast<std::uint32_t>(SectionId::kObjects),
+                        detail::write_objects(bake.objects, options.bbox_float32));
+  sections.emplace_back(static_cast<std::uint32_t>(SectionId::kCells),
+                        detail::write_cells(bake.cells));
+  sections.emplace_back(
+      static_cast<std::uint32_t>(SectionId::kGrid),
+      detail::write_grid(detail::build_grid(triangles, options.grid_cells_per_cell)));
+  sections.emplace_back(static_cast<std::uint32_t>(SectionId::kPvs),
+                        detail::write_pvs(bake.cells, options));
+  return detail::write_container(sections);
+}
+
+}  // namespace urbanpvs::runtime

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+// White-box tests of the encoding primitives: varints, diff references, grid mapping, the
+// triangle predicate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "ByteReader.hpp"
+#include "ByteWriter.hpp"
+#include "PointLocationGrid.hpp"
+#include "PvsCodec.hpp"
+#include "urbanpvs/runtime/Types.hpp"
+
+namespace {
+
+namespace rt = urbanpvs::runtime;
+namespace detail = urbanpvs::runtime::detail;
+
+bool decode(const std::vector<unsigned char>& bytes, std::uint32_t& v) {
+  const unsigned char* p = bytes.data();
+  return detail::read_varint(p, bytes.data() + bytes.size(), v) && p == bytes.data() + bytes.size();
+}
+
+TEST(Varint, RoundTripsBoundaryValues) {
+  for (std::uint32_t v : {0u, 1u, 127u, 128u, 255u, 16383u, 16384u, 2097151u, 2097152u, 268435455u,
+                          268435456u, 0xFFFFFFFEu, 0xFFFFFFFFu}) {
+    std::vector<unsigned char> bytes;
+    detail::append_varint(bytes, v);
+    EXPECT_EQ(bytes.size(), detail::varint_size(v));
+    std::uint32_t back = 0;
+    ASSERT_TRUE(decode(bytes, back)) << v;
+    EXPECT_EQ(back, v);
+  }
+}
+
+TEST(Varint, RejectsTruncatedOverlongAndOversized) {
+  std::uint32_t v;
+  EXPECT_FALSE(decode({}, v));
+  EXPECT_FALSE(decode({0x80}, v));                                // truncated
+  EXPECT_FALSE(decode({0x80, 0x00}, v));                          // non-minimal zero
+  EXPECT_FALSE(decode({0xFF, 0x80, 0x00}, v));                    // non-minimal
+  EXPECT_FALSE(decode({0xFF, 0xFF, 0xFF, 0xFF, 0x10}, v));        // 2^32
+  EXPECT_FALSE(decode({0xFF, 0xFF, 0xFF, 0xFF, 0x8F, 0x01}, v));  // six bytes
+  EXPECT_TRUE(decode({0xFF, 0xFF, 0xFF, 0xFF, 0x0F}, v));
+  EXPECT_EQ(v, 0xFFFFFFFFu);
+}
+
+TEST(DiffReference, ZigzagIsABijectionAndSmallForNeighbours) {
+  for (std::uint32_t cell : {0u, 1u, 1000u, 0xFFFFFFFEu}) {
+    for (std::uint32_t ref : {0u, 1u, 999u, 1001u, 0x7FFFFFFFu, 0xFFFFFFFEu}) {
+      EXPECT_EQ(detail::decode_reference(cell, detail::encode_reference(cell, ref)), ref);
+    }
+  }
+  EXPECT_EQ(detail::encode_reference(1000, 999), 1u);
+  EXPECT_EQ(detail::encode_reference(1000, 1001), 2u);
+}
+
+TEST(Grid, CoordinateMappingIsMonotonicAndClamped) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> v(-100, 1100);
+  for (int i = 0; i < 10000; ++i) {
+    double a = v(rng), b = v(rng);
+    if (a > b) std::swap(a, b);
+    EXPECT_LE(detail::grid_coordinate(a, 0, 7.3, 137), detail::grid_coordinate(b, 0, 7.3, 137));
+  }
+  EXPECT_EQ(detail::grid_coordinate(-1e300, 0, 1, 10), 0u);
+  EXPECT_EQ(detail::grid_coordinate(1e300, 0, 1, 10), 9u);
+  EXPECT_EQ(detail::grid_coordinate(std::numeric_limits<double>::infinity(), 0, 1, 10), 9u);
+  EXPECT_EQ(detail::grid_coordinate(std::nan(""), 0, 1, 10), 0u);
+}
+
+TEST(Triangle, ClosedOnEdgesAndVerticesEitherOrientation) {
+  const std::array<rt::Point2, 3> ccw{{{0, 0}, {4, 0}, {0, 4}}};
+  const std::array<rt::Point2, 3> cw{{{0, 0}, {0, 4}, {4, 0}}};
+  for (const auto& t : {ccw, cw}) {
+    EXPECT_TRUE(rt::triangle_contains(t, 1, 1));
+    EXPECT_TRUE(rt::triangle_contains(t, 0, 0));  // vertex
+    EXPECT_TRUE(rt::triangle_contains(t, 2, 0));  // edge
+    EXPECT_TRUE(rt::triangle_contains(t, 2, 2));  // hypotenuse
+    EXPECT_FALSE(rt::triangle_contains(t, 2.0001, 2));
+    EXPECT_FALSE(rt::triangle_contains(t, -0.0001, 1));
+  }
+  const std::array<rt::Point2, 3> degenerate{{{0, 0}, {1, 1}, {2, 2}}};
+  EXPECT_FALSE(rt::triangle_contains(degenerate, 1, 1));
+}
+
+TEST(Triangle, SharedEdgesLeaveNoCracks) {
+  // Two triangles sharing a long skew edge: every point sampled on or near the edge is in at
+  // least one of them.
+  const rt::Point2 a{0.1, 0.3}, b{1000.7, 733.9}, c{0, 800}, d{900, 0};
+  const std::array<rt::Point2, 3> left{{a, b, c}}, right{{b, a, d}};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> t(0.01, 0.99), e(-1e-12, 1e-12);
+  for (int i = 0; i < 100000; ++i) {
+    const double s = t(rng);
+    const double x = a.x + s * (b.x - a.x) + e(rng) * 1000, y = a.y + s * (b.y - a.y);
+    ASSERT_TRUE(rt::triangle_contains(left, x, y) || rt::triangle_contains(right, x, y))
+        << x << " " << y;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+// locate() against a brute-force search over all cells, on meshes (with points exactly on
+// shared edges and vertices) and on overlapping triangle soups.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "RandomBake.hpp"
+#include "urbanpvs/runtime/PvsFile.hpp"
+
+namespace {
+
+namespace rt = urbanpvs::runtime;
+
+/// The specification of locate(): the lowest-index cell whose closed triangle contains (x, y)
+/// and whose z range contains z.
+std::uint32_t brute_force(const rt::PvsBake& bake, double x, double y, double z, bool check_z) {
+  for (std::uint32_t c = 0; c < bake.cells.size(); ++c) {
+    const rt::CellRecord& cell = bake.cells[c];
+    if (check_z && !(z >= cell.z_min && z <= cell.z_max)) continue;
+    if (rt::triangle_contains(cell.triangle, x, y)) return c;
+  }
+  return rt::kNoCell;
+}
+
+rt::PvsFile open(const std::vector<std::byte>& bytes) {
+  rt::PvsFile file;
+  EXPECT_EQ(rt::PvsFile::open(bytes.data(), bytes.size(), file), rt::Status::kOk);
+  return file;
+}
+
+TEST(Locate, MeshAgreesWithBruteForceIncludingEdgesAndVertices) {
+  urbanpvs::test::RandomBakeOptions o;
+  o.nx = 24;
+  o.ny = 17;
+  o.square = 7.5;
+  o.objects = 10;
+  const rt::PvsBake bake = urbanpvs::test::random_mesh_bake(2024, o);
+  const auto bytes = rt::encode(bake);
+  const rt::PvsFile file = open(bytes);
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(0, 1), x(-5, o.nx * o.square + 5),
+      y(-5, o.ny * o.square + 5), z(-2, 6), t(0.01, 0.99);
+  std::size_t on_edges = 0, inside = 0;
+  for (int i = 0; i < 100000; ++i) {
+    double px, py;
+    const rt::CellRecord& c = bake.cells[rng() % bake.cells.size()];
+    const int k = static_cast<int>(rng() % 3);
+    switch (i % 4) {
+      case 0:
+      case 1:  // anywhere, including outside the mesh
+        px = x(rng);
+        py = y(rng);
+        break;
+      case 2: {  // on an edge (as close as floating point gets)
+        const double s = t(rng);
+        const rt::Point2 a = c.triangle[k], b = c.triangle[(k + 1) % 3];
+        px = a.x + s * (b.x - a.x);
+        py = a.y + s * (b.y - a.y);
+        ++on_edges;
+        break;
+      }
+      default:  // exactly on a vertex
+        px = c.triangle[k].x;
+        py = c.triangle[k].y;
+    }
+    const double pz = (i % 8 < 6) ? c.z_min + u(rng) * (c.z_max - c.z_min) : z(rng);
+    const std::uint32_t want = brute_force(bake, px, py, pz, true);
+    ASSERT_EQ(file.locate(px, py, pz), want) << px << " " << py << " " << pz;
+    ASSERT_EQ(file.locate(px, py, pz), want);  // deterministic
+    const std::uint32_t want_xy = brute_force(bake, px, py, 0, false);
+    ASSERT_EQ(file.locate_xy(px, py), want_xy);
+    if (i % 4 >= 2) {
+      // Points on edges and vertices of the mesh are never lost between cells.
+      ASSERT_NE(want_xy, rt::kNoCell) << px << " " << py;
+      ++inside;
+    }
+  }
+  EXPECT_GT(on_edges, 20000u);
+  EXPECT_GT(inside, 40000u);
+}
+
+TEST(Locate, OverlappingSoupReturnsLowestIndex) {
+  const rt::PvsBake bake = urbanpvs::test::random_soup_bake(77, 400, 200);
+  rt::EncodeOptions fine, coarse;
+  fine.grid_cells_per_cell = 4;
+  coarse.grid_cells_per_cell = 0.05;
+  for (const auto& options : {fine, coarse}) {
+    const auto bytes = rt::encode(bake, options);
+    const rt::PvsFile file = open(bytes);
+    std::mt19937_64 rng(2);
+    std::uniform_real_distribution<double> p(-30, 230), z(-6, 10);
+    for (int i = 0; i < 20000; ++i) {
+      const double px = p(rng), py = p(rng), pz = z(rng);
+      ASSERT_EQ(file.locate(px, py, pz), brute_force(bake, px, py, pz, true));
+    }
+  }
+}
+
+TEST(Locate, NonFiniteAndFarPointsAreOutside) {
+  const rt::PvsBake bake = urbanpvs::test::random_mesh_bake(3, {});
+  const auto bytes = rt::encode(bake);
+  const rt::PvsFile file = open(bytes);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const rt::CellRecord& c = bake.cells[0];
+  const double cx = (c.triangle[0].x + c.triangle[1].x + c.triangle[2].x) / 3;
+  const double cy = (c.triangle[0].y + c.triangle[1].y + c.triangle[2].y) / 3;
+  EXPECT_NE(file.locate(cx, cy, c.z_min), rt::kNoCell);
+  EXPECT_EQ(file.locate(cx, cy, c.z_max + 0.01), rt::kNoCell);  // above the prism
+  EXPECT_EQ(file.locate(nan, cy, c.z_min), rt::kNoCell);
+  EXPECT_EQ(file.locate(cx, nan, c.z_min), rt::kNoCell);
+  EXPECT_EQ(file.locate(cx, cy, nan), rt::kNoCell);
+  EXPECT_EQ(file.locate(inf, cy, c.z_min), rt::kNoCell);
+  EXPECT_EQ(file.locate(-1e300, 1e300, 0), rt::kNoCell);
+  EXPECT_NE(file.locate_xy(cx, cy), rt::kNoCell);
+  EXPECT_EQ(file.locate_xy(cx, nan), rt::kNoCell);
+}
+
+}  // namespace
