@@ -12,10 +12,12 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev
   # coordinates: WGS84 lon/lat -> local metric frame
   libgeographiclib-dev
-  # vectors for the cull-map renderer
+  # the 2D and 3D vector types of every builder stage
   libglm-dev
   # off-screen OpenGL for cull maps (llvmpipe)
   libosmesa6-dev
+  # baking across machines: mpirun -n N urbanpvs-preprocess (and its test)
+  libopenmpi-dev openmpi-bin
   # JSON input, command lines, tests, benchmarks
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
 )

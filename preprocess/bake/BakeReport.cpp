@@ -39,6 +39,16 @@ std::string report_json(const BakeReport& r) {
   for (const auto& [key, value] : r.settings) settings[key] = typed(value);
   j["settings"] = settings;
   j["threads"] = r.threads;
+  if (!r.ranks.empty()) {
+    nlohmann::ordered_json ranks = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < r.ranks.size(); ++i)
+      ranks.push_back({{"rank", i},
+                       {"cells", r.ranks[i].cells},
+                       {"threads", r.ranks[i].threads},
+                       {"peak_memory_bytes", r.ranks[i].peak_bytes}});
+    j["ranks"] = ranks;
+    j["load_balance"] = r.load_balance();
+  }
   j["counts"] = {{"objects", r.objects},
                  {"blocks", r.blocks},
                  {"occluders", r.occluders},
@@ -79,6 +89,17 @@ std::string summary_text(const BakeReport& r) {
                     "journal)\n",
                     r.cells, r.cells_computed, r.threads, r.cells_per_second(),
                     r.cells_from_journal));
+  if (!r.ranks.empty()) {
+    std::string shares;
+    std::uint64_t peak = 0;
+    for (const RankShare& share : r.ranks) {
+      shares += (shares.empty() ? "" : "/") + std::to_string(share.cells);
+      peak = std::max(peak, share.peak_bytes);
+    }
+    add(std::snprintf(line, sizeof line,
+                      "ranks:       %zu (cells %s; most over mean %.2f; peak per rank %s)\n",
+                      r.ranks.size(), shares.c_str(), r.load_balance(), mib(peak).c_str()));
+  }
   add(std::snprintf(line, sizeof line, "objects:     %zu (%zu blocks, %zu occluders)\n", r.objects,
                     r.blocks, r.occluders));
   add(std::snprintf(line, sizeof line,

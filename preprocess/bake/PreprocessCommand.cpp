@@ -16,6 +16,7 @@
 #include "urbanpvs/preprocess/bake/BakeJournal.hpp"
 #include "urbanpvs/preprocess/bake/BakeProgress.hpp"
 #include "urbanpvs/preprocess/bake/BakeReport.hpp"
+#include "urbanpvs/preprocess/bake/DistributedBake.hpp"
 #include "urbanpvs/preprocess/bake/ParallelBake.hpp"
 #include "urbanpvs/runtime/PvsWriter.hpp"
 
@@ -59,26 +60,33 @@ void remove_stale_temporaries(const fs::path& output) {
 
 class Run {
  public:
-  explicit Run(const PreprocessRequest& request)
-      : request_(request), style_(BakeProgress::style_for(stderr, request.quiet)) {}
+  Run(const PreprocessRequest& request, const MpiJob& job)
+      : request_(request),
+        job_(job),
+        quiet_(request.quiet || job.rank() != 0),
+        style_(BakeProgress::style_for(stderr, quiet_)) {}
 
   int execute();
 
  private:
   template <typename... Args>
   void note(const char* format, Args... args) {
-    if (request_.quiet) return;
+    if (quiet_) return;
     std::fprintf(stderr, "%s", kPrefix);
     std::fprintf(stderr, format, args...);
     std::fputc('\n', stderr);
   }
   void check_output_directory() const;
   void read_inputs();
+  JournalIdentity identity_of(const BakeScene& scene) const;
+  void check_same_scene_on_every_rank(const JournalIdentity& identity) const;
   void open_journal(const BakeScene& scene);
   void compute_cells(const BakeScene& scene);
   void write_output(const BakeScene& scene);
 
   const PreprocessRequest& request_;
+  const MpiJob& job_;
+  const bool quiet_;  // only rank 0 of a job speaks (errors excepted)
   const BakeProgress::Style style_;
   BakeOptions options_;
   geometry::City city_;
@@ -127,11 +135,24 @@ void Run::read_inputs() {
   }
 }
 
+JournalIdentity Run::identity_of(const BakeScene& scene) const {
+  return {bake_fingerprint(input_hash_, settings_, scene.cell_count(), city_.objects.size()),
+          static_cast<std::uint32_t>(scene.cell_count()),
+          static_cast<std::uint32_t>(city_.objects.size())};
+}
+
+// Every rank reads the inputs and builds the scene itself (cheaper than sending it: see README,
+// "Baking a metropolis"); a rank that read other files or settings would compute other cells.
+void Run::check_same_scene_on_every_rank(const JournalIdentity& identity) const {
+  const std::vector<unsigned char> mine = encode_journal_header(identity);
+  if (job_.broadcast(mine) != mine)
+    throw Failure{kExitUsage, "rank " + std::to_string(job_.rank()) +
+                                  ": its inputs or settings differ from rank 0's (another file "
+                                  "content, option or version)"};
+}
+
 void Run::open_journal(const BakeScene& scene) {
-  const JournalIdentity identity{
-      bake_fingerprint(input_hash_, settings_, scene.cell_count(), city_.objects.size()),
-      static_cast<std::uint32_t>(scene.cell_count()),
-      static_cast<std::uint32_t>(city_.objects.size())};
+  const JournalIdentity identity = identity_of(scene);
   report_.fingerprint = identity.fingerprint;
   const std::string path = request_.output + ".journal";
   const std::size_t cells = scene.cell_count();
@@ -171,16 +192,20 @@ void Run::compute_cells(const BakeScene& scene) {
   BakeProgress progress(style_, scene.cell_count(), report_.cells_from_journal, stderr, kPrefix);
   ParallelBakeOptions parallel;
   parallel.threads = request_.threads;
-  bake_cells(
-      scene, missing_, parallel,
-      [&](CellOutcome& outcome) {
-        JournalRecord record{outcome.cell, std::move(outcome.pvs), outcome.counters};
-        journal_->append(record);
-        // Each cell has its own slot, written by exactly one worker: no lock needed.
-        pvs_[outcome.cell] = std::move(record.pvs);
-        counters_[outcome.cell] = outcome.counters;
-      },
-      [&](std::size_t done) { progress.update(done); });
+  auto finished = [&](CellOutcome& outcome) {
+    JournalRecord record{outcome.cell, std::move(outcome.pvs), outcome.counters};
+    journal_->append(record);
+    // Each cell has its own slot, written by exactly one thread: no lock needed.
+    pvs_[outcome.cell] = std::move(record.pvs);
+    counters_[outcome.cell] = outcome.counters;
+  };
+  auto tick = [&](std::size_t done) { progress.update(done); };
+  if (job_.distributed()) {
+    report_.ranks = bake_cells_across_ranks(job_, scene, identity_of(scene), missing_, parallel,
+                                            finished, tick);
+  } else {
+    bake_cells(scene, missing_, parallel, finished, tick);
+  }
   progress.finish(missing_.size());
   report_.cells_computed = missing_.size();
 }
@@ -221,8 +246,10 @@ int Run::execute() {
   report_.tool = std::string("urbanpvs-preprocess ") + URBANPVS_VERSION;
   report_.output = request_.output;
   report_.threads = request_.threads;
-  check_output_directory();
-  remove_stale_temporaries(request_.output);
+  if (job_.rank() == 0) {
+    check_output_directory();
+    remove_stale_temporaries(request_.output);
+  }
 
   auto start = Clock::now();
   read_inputs();
@@ -241,6 +268,13 @@ int Run::execute() {
   report_.cells = scene.cell_count();
   note("scene: %zu blocks, %zu occluders, %zu view cells (%.2f s)", report_.blocks,
        report_.occluders, report_.cells, report_.seconds.scene);
+
+  if (job_.distributed()) check_same_scene_on_every_rank(identity_of(scene));
+  if (job_.rank() != 0) {
+    // The other ranks compute what rank 0 hands out; rank 0 alone keeps the journal and writes.
+    bake_cells_across_ranks(job_, scene, identity_of(scene), {}, {request_.threads}, {}, {});
+    return 0;
+  }
 
   start = Clock::now();
   open_journal(scene);
@@ -265,7 +299,7 @@ int Run::execute() {
   }
   if (!journal_->remove())
     std::fprintf(stderr, "%swarning: cannot delete %s\n", kPrefix, journal_->path().c_str());
-  if (!request_.quiet) std::fputs(summary_text(report_).c_str(), stderr);
+  if (!quiet_) std::fputs(summary_text(report_).c_str(), stderr);
   return 0;
 }
 
@@ -284,24 +318,29 @@ std::vector<std::pair<std::string, std::string>> result_settings(const Preproces
   return out;
 }
 
-int run_preprocess(const PreprocessRequest& request) {
+int run_preprocess(const PreprocessRequest& request, const MpiJob& job) {
+  // A rank that fails ends the whole job (MpiJob::abort): the others would wait for it forever.
+  // Rank 0 writes the output only at the very end, by rename, so a failed job leaves none.
+  const std::string prefix =
+      std::string(kPrefix) + (job.distributed() ? "rank " + std::to_string(job.rank()) + ": " : "");
+  auto fail = [&](int code, const char* message) {
+    std::fprintf(stderr, "%s%s\n", prefix.c_str(), message);
+    std::fflush(stderr);
+    job.abort(code);
+    return code;
+  };
   try {
-    return Run(request).execute();
+    return Run(request, job).execute();
   } catch (const Failure& f) {
-    std::fprintf(stderr, "%s%s\n", kPrefix, f.message.c_str());
-    return f.code;
+    return fail(f.code, f.message.c_str());
   } catch (const geometry::InputError& e) {
-    std::fprintf(stderr, "%s%s\n", kPrefix, e.what());
-    return geometry::exit_code(e.problem());
+    return fail(geometry::exit_code(e.problem()), e.what());
   } catch (const JournalWriteError& e) {
-    std::fprintf(stderr, "%s%s\n", kPrefix, e.what());
-    return kExitOutput;
+    return fail(kExitOutput, e.what());
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%sout of memory\n", kPrefix);
-    return kExitProcessing;
+    return fail(kExitProcessing, "out of memory");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s%s\n", kPrefix, e.what());
-    return kExitProcessing;
+    return fail(kExitProcessing, e.what());
   }
 }
 

@@ -3,6 +3,7 @@
 // come from this one struct, so they never disagree.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -26,6 +27,13 @@ struct InputFileInfo {
   std::uint64_t bytes = 0;
 };
 
+/// What one rank did in a distributed bake.
+struct RankShare {
+  std::size_t cells = 0;         ///< cells it computed
+  unsigned threads = 0;          ///< its worker threads
+  std::uint64_t peak_bytes = 0;  ///< its peak resident memory, as last reported
+};
+
 struct BakeReport {
   std::string tool;  ///< "urbanpvs-preprocess <version>"
   std::vector<InputFileInfo> inputs;
@@ -35,7 +43,9 @@ struct BakeReport {
   std::uint64_t output_bytes = 0;
   /// The settings stored in the file's metadata properties, in their order.
   std::vector<std::pair<std::string, std::string>> settings;
-  unsigned threads = 1;
+  unsigned threads = 1;  ///< of this process (rank 0 in an MPI job)
+  /// Each rank's share in an MPI job (DistributedBake.hpp); empty for a run of one process.
+  std::vector<RankShare> ranks;
   std::size_t objects = 0, blocks = 0, occluders = 0, cells = 0;
   /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding).
   std::vector<std::string> repairs, non_occluding;
@@ -50,6 +60,13 @@ struct BakeReport {
   double mean_pvs() const { return cells > 0 ? double(pvs_entries) / double(cells) : 0.0; }
   /// 1 − mean PVS / objects: the share of objects a renderer skips in the average cell.
   double fraction_culled() const { return objects > 0 ? 1.0 - mean_pvs() / double(objects) : 0.0; }
+  /// The most cells one rank computed over the mean of all ranks (1: perfect balance); 1 for a
+  /// run of one process.
+  double load_balance() const {
+    std::size_t most = 0, sum = 0;
+    for (const RankShare& r : ranks) most = std::max(most, r.cells), sum += r.cells;
+    return sum > 0 ? double(most) * double(ranks.size()) / double(sum) : 1.0;
+  }
   /// Cells computed by this run per second of the visibility stage.
   double cells_per_second() const {
     return seconds.visibility > 0 ? double(cells_computed) / seconds.visibility : 0.0;

@@ -12,6 +12,7 @@
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/preprocess/bake/BakeScene.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
+#include "urbanpvs/preprocess/bake/MpiJob.hpp"
 #include "urbanpvs/runtime/ExitCodes.hpp"
 
 namespace urbanpvs::preprocess {
@@ -39,7 +40,8 @@ std::vector<std::pair<std::string, std::string>> result_settings(const Preproces
 /// Runs the bake: read, scene, every cell's PVS (in parallel, journalled), write. Progress and
 /// the summary go to standard error unless request.quiet; errors always do. Returns 0 or an exit
 /// code; on failure no output (and no temporary file) is left, while the journal stays for
-/// --resume.
-int run_preprocess(const PreprocessRequest& request);
+/// --resume. Run by every rank of an MPI `job` (see DistributedBake.hpp), only rank 0 keeps
+/// the journal and writes; a failure on any rank ends the job with its exit code.
+int run_preprocess(const PreprocessRequest& request, const MpiJob& job = MpiJob::single());
 
 }  // namespace urbanpvs::preprocess
