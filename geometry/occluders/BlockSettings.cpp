@@ -14,6 +14,10 @@ const SettingTable<BlockOptions>& block_settings() {
       number_setting<B>("height-step", "m", S::Occluders, 0, 100,
                         "Occluder tops are rounded down to a multiple of this (0: exact heights)",
                         [](B& b) -> double& { return b.height_step; }),
+      number_setting<B>("outline-tolerance", "m", S::Occluders, 0, 0.05,
+                        "Block outlines are simplified within this before shrinking, and shrunk "
+                        "by as much more (0: every vertex kept)",
+                        [](B& b) -> double& { return b.outline_tolerance; }),
   };
   return table;
 }

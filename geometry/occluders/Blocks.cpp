@@ -6,6 +6,7 @@
 #include <map>
 #include <numeric>
 
+#include "BoundarySimplification.hpp"
 #include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
@@ -118,7 +119,9 @@ Block build_block(std::vector<const Prism*> members, const BlockOptions& options
       for (Polygon& g : grow_polygon(*members[i]->footprint, 0.5 * options.gap_tolerance))
         pieces.push_back(std::move(g));
     }
-    descending.push_back({level, union_polygons(pieces), 0.5 * options.gap_tolerance});
+    descending.push_back(
+        {level, detail::simplify_boundaries(union_polygons(pieces), options.outline_tolerance),
+         0.5 * options.gap_tolerance + options.outline_tolerance});
   }
   std::sort(block.objects.begin(), block.objects.end());
   block.objects.erase(std::unique(block.objects.begin(), block.objects.end()), block.objects.end());

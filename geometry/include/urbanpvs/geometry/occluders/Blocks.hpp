@@ -22,15 +22,24 @@ struct BlockOptions {
   /// less), which merges near-equal heights into one level. 0 keeps exact heights.
   /// [Units: m]
   double height_step = 0.1;
+  /// Each level's outline is simplified within this distance before it is shrunk, and shrunk by
+  /// as much more (BlockLevel::grown_by). Fused walls that are not bit-identical in the data
+  /// leave near-collinear vertices a fraction of a millimetre apart; the straight skeleton then
+  /// falls back to exact arithmetic on every event, and shrinking took 90% of the scene build
+  /// (39 s of 42 s on a generated 4 km² city; 3.2 s with 1 mm). 0 keeps every vertex.
+  /// [Units: m]
+  double outline_tolerance = 0.001;
 };
 
 /// One step of a block's height field: everything of the block at least `top_z` high.
 struct BlockLevel {
   double top_z = 0;  ///< absolute height of this level's roof plane
-  /// Union of the footprints of the occluders reaching top_z, each first grown by `grown_by`
-  /// (mitred offset) so that gaps narrower than the gap tolerance close. Whoever erodes it must
-  /// erode by `grown_by` more (see shrink_blocks): straight-skeleton offsets compose, so eroding
-  /// the grown union by ε + grown_by stays inside the real footprints wherever no gap was closed.
+  /// Union of the footprints of the occluders reaching top_z, each first grown by half the gap
+  /// tolerance (mitred offset) so that gaps narrower than it close, then simplified within the
+  /// outline tolerance. Whoever erodes it must erode by `grown_by` more (see shrink_blocks):
+  /// straight-skeleton offsets compose, and what the simplification added lies within its
+  /// tolerance of the boundary, so eroding the region by ε + grown_by stays inside the real
+  /// footprints wherever no gap was closed.
   std::vector<Polygon> region;
   double grown_by = 0;  ///< [Units: m]
 };
