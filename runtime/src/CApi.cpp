@@ -7,11 +7,17 @@
 
 using urbanpvs::runtime::CellGeometry;
 using urbanpvs::runtime::ObjectInfo;
+using urbanpvs::runtime::PvsDecoder;
 using urbanpvs::runtime::PvsFile;
 using urbanpvs::runtime::Status;
 
 struct urbanpvs_file {
   PvsFile file;
+};
+
+struct urbanpvs_decoder {
+  explicit urbanpvs_decoder(const PvsFile& f) noexcept : decoder(f) {}
+  PvsDecoder decoder;
 };
 
 namespace {
@@ -158,6 +164,42 @@ urbanpvs_status urbanpvs_cell(const urbanpvs_file* file, uint32_t cell, double t
     z_range[1] = c.z_max;
   }
   return URBANPVS_OK;
+}
+
+urbanpvs_status urbanpvs_decoder_create(const urbanpvs_file* file, urbanpvs_decoder** out) {
+  if (out == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  *out = nullptr;
+  if (file == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  *out = new (std::nothrow) urbanpvs_decoder(file->file);
+  return *out != nullptr ? URBANPVS_OK : URBANPVS_OUT_OF_MEMORY;
+}
+
+void urbanpvs_decoder_destroy(urbanpvs_decoder* decoder) {
+  delete decoder;
+}
+
+urbanpvs_status urbanpvs_pvs_union(urbanpvs_decoder* decoder, const uint32_t* cells, size_t n,
+                                   const uint32_t** objects, size_t* count) {
+  if (decoder == nullptr || objects == nullptr || count == nullptr)
+    return URBANPVS_INVALID_ARGUMENT;
+  const Status status = decoder->decoder.decode_union(cells, n);
+  *objects = decoder->decoder.begin();
+  *count = decoder->decoder.size();
+  return to_c(status);
+}
+
+urbanpvs_status urbanpvs_pvs_delta(urbanpvs_decoder* decoder, uint32_t from, uint32_t to,
+                                   const uint32_t** entered, size_t* entered_count,
+                                   const uint32_t** left, size_t* left_count) {
+  if (decoder == nullptr || entered == nullptr || entered_count == nullptr || left == nullptr ||
+      left_count == nullptr)
+    return URBANPVS_INVALID_ARGUMENT;
+  const Status status = decoder->decoder.decode_delta(from, to);
+  *entered = decoder->decoder.entered().data;
+  *entered_count = decoder->decoder.entered().size;
+  *left = decoder->decoder.left().data;
+  *left_count = decoder->decoder.left().size;
+  return to_c(status);
 }
 
 }  // extern "C"

@@ -234,10 +234,19 @@ PvsDecoder::PvsDecoder(const PvsFile& file) noexcept
     : file_(&file), capacity_(file.decode_buffer_size()) {
   buffer_.reset(new (std::nothrow) std::uint32_t[std::max<std::size_t>(capacity_, 1)]);
   if (!buffer_) capacity_ = 0;
+  result_ = buffer_.get();
+}
+
+PvsDecoder::~PvsDecoder() = default;
+
+void PvsDecoder::clear() noexcept {
+  result_ = buffer_.get();
+  size_ = 0;
+  entered_ = left_ = IndexSpan{};
 }
 
 Status PvsDecoder::decode(std::uint32_t cell) noexcept {
-  size_ = 0;
+  clear();
   if (!buffer_) return Status::kOutOfMemory;
   std::size_t count = 0;
   const Status status = file_->decode_pvs(cell, buffer_.get(), capacity_, count);

@@ -22,7 +22,11 @@ int main(int argc, char** argv) {
   size_t count = 0, id_size = 0;
   const char* id = NULL;
   double bbox[6], triangle[6], z[2], xyz[3] = {85002.0, 446002.0, 0.25}, local[3];
-  uint32_t neighbours[3], cell;
+  uint32_t neighbours[3], cell, o;
+  urbanpvs_decoder* decoder = NULL;
+  const uint32_t *objects = NULL, *entered = NULL, *left = NULL;
+  size_t n_entered = 0, n_left = 0, k;
+  const uint32_t cells[3] = {1, 2, 4}, bad_cells[2] = {1, 6};
   if (argc != 2) {
     fprintf(stderr, "usage: %s GOLDEN.pvs\n", argv[0]);
     return 2;
@@ -64,6 +68,43 @@ int main(int argc, char** argv) {
   CHECK(neighbours[0] == URBANPVS_NO_CELL && neighbours[1] == 3 && neighbours[2] == 1);
   CHECK(urbanpvs_cell(file, 2, NULL, NULL, NULL) == URBANPVS_OK);
   CHECK(urbanpvs_cell(NULL, 2, NULL, NULL, NULL) == URBANPVS_INVALID_ARGUMENT);
+
+  /* Union and delta, checked object by object against urbanpvs_is_visible. */
+  CHECK(urbanpvs_decoder_create(NULL, &decoder) == URBANPVS_INVALID_ARGUMENT && decoder == NULL);
+  CHECK(urbanpvs_decoder_create(file, &decoder) == URBANPVS_OK && decoder != NULL);
+  CHECK(urbanpvs_pvs_union(decoder, cells, 3, &objects, &count) == URBANPVS_OK);
+  for (o = 0, k = 0; o < 120; ++o)
+    if (urbanpvs_is_visible(file, 1, o) || urbanpvs_is_visible(file, 2, o) ||
+        urbanpvs_is_visible(file, 4, o)) {
+      CHECK(k < count && objects[k] == o);
+      ++k;
+    }
+  CHECK(k == count && count > urbanpvs_pvs_size(file, 2));
+  CHECK(urbanpvs_pvs_union(decoder, bad_cells, 2, &objects, &count) == URBANPVS_OUT_OF_RANGE);
+  CHECK(count == 0);
+  CHECK(urbanpvs_pvs_delta(decoder, 2, 3, &entered, &n_entered, &left, &n_left) == URBANPVS_OK);
+  {
+    size_t e = 0, l = 0;
+    for (o = 0; o < 120; ++o) {
+      const int before = urbanpvs_is_visible(file, 2, o), after = urbanpvs_is_visible(file, 3, o);
+      if (after && !before) {
+        CHECK(e < n_entered && entered[e] == o);
+        ++e;
+      }
+      if (before && !after) {
+        CHECK(l < n_left && left[l] == o);
+        ++l;
+      }
+    }
+    CHECK(e == n_entered && l == n_left && e + l > 0);
+  }
+  CHECK(urbanpvs_pvs_delta(decoder, 2, 6, &entered, &n_entered, &left, &n_left) ==
+        URBANPVS_OUT_OF_RANGE);
+  CHECK(n_entered == 0 && n_left == 0);
+  CHECK(urbanpvs_pvs_delta(decoder, 2, 3, NULL, &n_entered, &left, &n_left) ==
+        URBANPVS_INVALID_ARGUMENT);
+  urbanpvs_decoder_destroy(decoder);
+  urbanpvs_decoder_destroy(NULL);
   urbanpvs_close(file);
   urbanpvs_close(NULL);
   if (failures == 0) printf("C API: all checks passed\n");

@@ -108,6 +108,30 @@ urbanpvs_status urbanpvs_object(const urbanpvs_file* file, uint32_t object, cons
 urbanpvs_status urbanpvs_cell(const urbanpvs_file* file, uint32_t cell, double triangle[6],
                               double z_range[2], uint32_t neighbours[3]);
 
+/*
+ * For streaming engines: a decoder owns the storage of set operations over PVSs, allocated on
+ * its first use, so that later calls allocate nothing. One decoder per thread; it must be
+ * destroyed before its file is closed. Results point into the decoder and stay valid until
+ * its next call.
+ */
+typedef struct urbanpvs_decoder urbanpvs_decoder;
+
+/* A decoder for `file`; *out is NULL on failure. */
+urbanpvs_status urbanpvs_decoder_create(const urbanpvs_file* file, urbanpvs_decoder** out);
+void urbanpvs_decoder_destroy(urbanpvs_decoder* decoder);
+
+/* The objects visible from any of cells[0, n) (ascending, each once): what to prefetch around
+ * the camera or along a planned route. n == 0 gives an empty set. */
+urbanpvs_status urbanpvs_pvs_union(urbanpvs_decoder* decoder, const uint32_t* cells, size_t n,
+                                   const uint32_t** objects, size_t* count);
+
+/* The camera crosses from cell `from` to cell `to`: `entered` lists the objects visible from
+ * `to` but not from `from` (what to load), `left` those visible from `from` but not from `to`
+ * (what may be unloaded); both ascending. */
+urbanpvs_status urbanpvs_pvs_delta(urbanpvs_decoder* decoder, uint32_t from, uint32_t to,
+                                   const uint32_t** entered, size_t* entered_count,
+                                   const uint32_t** left, size_t* left_count);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

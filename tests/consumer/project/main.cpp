@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // What an engine does with the installed runtime: load a .pvs, locate the camera, draw what
-// is visible.
+// is visible, and stream: when the camera crosses into the next cell, load what enters view
+// and unload what leaves it.
 #include <cstdio>
 
 #include "urbanpvs/runtime.hpp"
@@ -33,6 +34,29 @@ int main(int argc, char** argv) {
     std::printf(" %.*s", static_cast<int>(info.source_id.size()), info.source_id.data());
   }
   std::printf("\n");
+
+  // The camera walks into a neighbouring cell: pvs_delta says what to load and what to drop.
+  rt::CellGeometry here;
+  if (file.cell(cell, here) != rt::Status::kOk) return 1;
+  std::uint32_t next = rt::kNoCell;
+  for (std::uint32_t n : here.neighbours)
+    if (n != rt::kNoCell && next == rt::kNoCell) next = n;
+  if (next == rt::kNoCell) {
+    std::fprintf(stderr, "consumer: cell %u has no neighbour to walk to\n", cell);
+    return 1;
+  }
+  const std::size_t before = visible.size();
+  rt::PvsDecoder stream(file);
+  if (stream.decode_delta(cell, next) != rt::Status::kOk) return 1;
+  std::printf("consumer: into cell %u: load %zu, unload %zu, now %zu visible\n", next,
+              stream.entered().size, stream.left().size, stream.size());
+  // What was loaded, plus what enters, minus what leaves, is what the next cell sees.
+  if (before + stream.entered().size - stream.left().size != stream.size()) return 1;
+  for (std::uint32_t object : stream.entered())
+    if (!file.is_visible(next, object) || file.is_visible(cell, object)) return 1;
+  for (std::uint32_t object : stream.left())
+    if (file.is_visible(next, object) || !file.is_visible(cell, object)) return 1;
+
   // The C API is installed too.
   urbanpvs_file* c_file = nullptr;
   if (urbanpvs_open_file(argv[1], &c_file) != URBANPVS_OK) return 1;

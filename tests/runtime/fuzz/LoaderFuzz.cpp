@@ -49,6 +49,18 @@ void exercise_cells(const PvsFile& file) {
     check(file.locate_xy(x, y) == kNoCell || file.locate_xy(x, y) < file.cell_count());
   }
   check(file.locate(std::nan(""), 0, 0) == kNoCell);
+  // Set operations across neighbours: sizes add up, every entry is in range.
+  urbanpvs::runtime::PvsDecoder decoder(file);
+  for (std::uint32_t c = 0; c + 1 < cells && c < 64; ++c) {
+    const std::uint32_t pair[2] = {c, c + 1};
+    check(decoder.decode_union(pair, 2) == Status::kOk);
+    check(decoder.size() >= file.pvs_size(c) && decoder.size() >= file.pvs_size(c + 1) &&
+          decoder.size() <= std::size_t{file.pvs_size(c)} + file.pvs_size(c + 1));
+    for (std::uint32_t o : decoder) check(o < file.object_count());
+    check(decoder.decode_delta(c, c + 1) == Status::kOk);
+    check(std::size_t{file.pvs_size(c)} + decoder.entered().size - decoder.left().size ==
+          file.pvs_size(c + 1));
+  }
   std::size_t ignored = 0;
   check(file.decode_pvs(file.cell_count(), buffer.data(), buffer.size(), ignored) ==
         Status::kOutOfRange);

@@ -191,24 +191,57 @@ class PvsFile {
 /// A reusable decoder: owns a buffer of decode_buffer_size() slots, allocated once in the
 /// constructor, so decoding PVSs in a loop allocates nothing. One decoder per thread; the file
 /// must outlive it.
+///
+/// It also answers what a streaming engine asks (PvsSetOperations.cpp): the union of several
+/// cells' PVSs (prefetching around the camera or along a route) and the delta between two
+/// cells (what to load and what may be unloaded when the camera crosses). Their storage is
+/// allocated once, on the first such call (about object_count() slots for unions, 3 x
+/// max_pvs_size() for deltas); later calls allocate nothing.
 class PvsDecoder {
  public:
   /// Allocates the scratch buffer. If that fails, decode() returns kOutOfMemory.
   explicit PvsDecoder(const PvsFile& file) noexcept;
+  ~PvsDecoder();
+  PvsDecoder(const PvsDecoder&) = delete;
+  PvsDecoder& operator=(const PvsDecoder&) = delete;
 
-  /// Decodes the PVS of `cell`; the result is in view() until the next decode().
+  /// Decodes the PVS of `cell`; the result is in view() until the next call.
   Status decode(std::uint32_t cell) noexcept;
-  /// The last decoded PVS (empty before the first successful decode()).
-  IndexSpan view() const noexcept { return {buffer_.get(), size_}; }
-  const std::uint32_t* begin() const noexcept { return buffer_.get(); }
-  const std::uint32_t* end() const noexcept { return buffer_.get() + size_; }
+  /// The objects visible from any of `cells[0, n)`, ascending and each once, in view() until
+  /// the next call. n == 0 gives an empty set. kOutOfRange when a cell is out of range,
+  /// kInvalidArgument when cells is null and n > 0 (view() is then empty). O(sum of the
+  /// PVS sizes + object_count() / 32).
+  Status decode_union(const std::uint32_t* cells, std::size_t n) noexcept;
+  /// The camera crosses from cell `from` to cell `to`: entered() is PVS(to) minus PVS(from)
+  /// (what to load), left() is PVS(from) minus PVS(to) (what may be unloaded), both ascending;
+  /// view() is PVS(to). All three stay until the next call; on an error all are empty.
+  /// O(|PVS(from)| + |PVS(to)|).
+  Status decode_delta(std::uint32_t from, std::uint32_t to) noexcept;
+
+  /// The last decoded set (empty before the first successful call).
+  IndexSpan view() const noexcept { return {result_, size_}; }
+  const std::uint32_t* begin() const noexcept { return result_; }
+  const std::uint32_t* end() const noexcept { return result_ + size_; }
   std::size_t size() const noexcept { return size_; }
+  /// After decode_delta(): the objects that came into view and those that went out of it.
+  IndexSpan entered() const noexcept { return entered_; }
+  IndexSpan left() const noexcept { return left_; }
 
  private:
+  void clear() noexcept;
+  bool reserve_sets(std::size_t slots) noexcept;
+
   const PvsFile* file_;
   std::unique_ptr<std::uint32_t[]> buffer_;
   std::size_t capacity_ = 0;
+  const std::uint32_t* result_ = nullptr;
   std::size_t size_ = 0;
+  // Storage of unions and deltas (allocated on first use) and the union's marks, one bit per
+  // object, all zero between calls.
+  std::unique_ptr<std::uint32_t[]> sets_;
+  std::size_t sets_capacity_ = 0;
+  std::unique_ptr<std::uint32_t[]> marks_;
+  IndexSpan entered_{}, left_{};
 };
 
 }  // namespace urbanpvs::runtime

@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+// pvs_union and pvs_delta (PvsDecoder::decode_union / decode_delta) against the standard
+// library's set algorithms on the bake's own lists, with and without diff chains in the file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <iterator>
+#include <random>
+#include <vector>
+
+#include "SyntheticCity.hpp"
+#include "urbanpvs/runtime/PvsFile.hpp"
+
+namespace {
+
+namespace rt = urbanpvs::runtime;
+using Ids = std::vector<std::uint32_t>;
+
+Ids ids(rt::IndexSpan s) {
+  return Ids(s.begin(), s.end());
+}
+
+Ids reference_union(const rt::PvsBake& bake, const Ids& cells) {
+  Ids out;
+  for (std::uint32_t c : cells) {
+    Ids merged;
+    std::set_union(out.begin(), out.end(), bake.cells[c].pvs.begin(), bake.cells[c].pvs.end(),
+                   std::back_inserter(merged));
+    out.swap(merged);
+  }
+  return out;
+}
+
+Ids difference(const Ids& a, const Ids& b) {
+  Ids out;
+  std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
+  return out;
+}
+
+class SetOperations : public ::testing::TestWithParam<std::uint32_t> {
+ protected:
+  void SetUp() override {
+    urbanpvs::test::SyntheticCityOptions city;
+    city.extent_m = 800;
+    city.squares = 24;  // 1,152 cells
+    city.objects = 900;
+    bake_ = urbanpvs::test::synthetic_city(city);
+    rt::EncodeOptions options;
+    options.max_diff_chain = GetParam();
+    bytes_ = rt::encode(bake_, options);
+    ASSERT_EQ(rt::PvsFile::open(bytes_.data(), bytes_.size(), file_), rt::Status::kOk);
+  }
+  rt::PvsBake bake_;
+  std::vector<std::byte> bytes_;
+  rt::PvsFile file_;
+};
+
+TEST_P(SetOperations, UnionOfRandomCellsMatchesSetUnion) {
+  rt::PvsDecoder decoder(file_);
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<std::uint32_t> cell(0, file_.cell_count() - 1);
+  for (int trial = 0; trial < 300; ++trial) {
+    Ids cells(1 + trial % 9);
+    for (std::uint32_t& c : cells) c = cell(rng);
+    if (trial % 5 == 0) cells.push_back(cells.front());  // a cell twice changes nothing
+    ASSERT_EQ(decoder.decode_union(cells.data(), cells.size()), rt::Status::kOk);
+    ASSERT_EQ(ids(decoder.view()), reference_union(bake_, cells)) << "trial " << trial;
+  }
+}
+
+TEST_P(SetOperations, UnionOfACellAndItsNeighboursForPrefetching) {
+  rt::PvsDecoder decoder(file_);
+  std::size_t grew = 0;
+  for (std::uint32_t c = 0; c < file_.cell_count(); c += 3) {
+    Ids ring{c};
+    for (std::uint32_t n : bake_.cells[c].neighbours)
+      if (n != rt::kNoCell) ring.push_back(n);
+    ASSERT_EQ(decoder.decode_union(ring.data(), ring.size()), rt::Status::kOk);
+    const Ids got = ids(decoder.view());
+    ASSERT_EQ(got, reference_union(bake_, ring)) << "cell " << c;
+    grew += got.size() > bake_.cells[c].pvs.size();
+  }
+  EXPECT_GT(grew, 0u);  // the neighbours add objects somewhere: the union is not one cell's PVS
+}
+
+TEST_P(SetOperations, DeltaAcrossEveryEdgeAndBetweenRandomCells) {
+  rt::PvsDecoder decoder(file_);
+  auto check = [&](std::uint32_t from, std::uint32_t to) {
+    ASSERT_EQ(decoder.decode_delta(from, to), rt::Status::kOk);
+    const Ids& before = bake_.cells[from].pvs;
+    const Ids& after = bake_.cells[to].pvs;
+    ASSERT_EQ(ids(decoder.entered()), difference(after, before)) << from << " -> " << to;
+    ASSERT_EQ(ids(decoder.left()), difference(before, after)) << from << " -> " << to;
+    ASSERT_EQ(ids(decoder.view()), after);
+  };
+  std::size_t changes = 0;
+  for (std::uint32_t c = 0; c < file_.cell_count(); ++c)
+    for (std::uint32_t n : bake_.cells[c].neighbours)
+      if (n != rt::kNoCell) {
+        check(c, n);
+        changes += decoder.entered().size + decoder.left().size;
+      }
+  EXPECT_GT(changes, 0u);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<std::uint32_t> cell(0, file_.cell_count() - 1);
+  for (int trial = 0; trial < 200; ++trial) check(cell(rng), cell(rng));
+  // Staying in the cell: nothing enters, nothing leaves.
+  ASSERT_EQ(decoder.decode_delta(5, 5), rt::Status::kOk);
+  EXPECT_EQ(decoder.entered().size, 0u);
+  EXPECT_EQ(decoder.left().size, 0u);
+  EXPECT_EQ(ids(decoder.view()), bake_.cells[5].pvs);
+}
+
+TEST_P(SetOperations, ErrorsLeaveEverythingEmptyAndLaterCallsRight) {
+  rt::PvsDecoder decoder(file_);
+  const std::uint32_t bad = file_.cell_count();
+  const Ids with_bad{3, bad, 4};
+  ASSERT_EQ(decoder.decode_delta(3, 4), rt::Status::kOk);
+  EXPECT_EQ(decoder.decode_union(with_bad.data(), with_bad.size()), rt::Status::kOutOfRange);
+  EXPECT_EQ(decoder.size(), 0u);
+  EXPECT_EQ(decoder.entered().size, 0u);
+  EXPECT_EQ(decoder.decode_union(nullptr, 2), rt::Status::kInvalidArgument);
+  EXPECT_EQ(decoder.size(), 0u);
+  EXPECT_EQ(decoder.decode_union(nullptr, 0), rt::Status::kOk);
+  EXPECT_EQ(decoder.size(), 0u);
+  EXPECT_EQ(decoder.decode_delta(bad, 0), rt::Status::kOutOfRange);
+  EXPECT_EQ(decoder.decode_delta(0, bad), rt::Status::kOutOfRange);
+  EXPECT_EQ(decoder.size(), 0u);
+  EXPECT_EQ(decoder.left().size, 0u);
+  // Unions, deltas and single decodes in any order share the decoder's storage.
+  const Ids pair{10, 11};
+  ASSERT_EQ(decoder.decode_union(pair.data(), pair.size()), rt::Status::kOk);
+  EXPECT_EQ(ids(decoder.view()), reference_union(bake_, pair));
+  ASSERT_EQ(decoder.decode(12), rt::Status::kOk);
+  EXPECT_EQ(ids(decoder.view()), bake_.cells[12].pvs);
+  EXPECT_EQ(decoder.entered().size, 0u);
+  ASSERT_EQ(decoder.decode_union(pair.data(), pair.size()), rt::Status::kOk);
+  EXPECT_EQ(ids(decoder.view()), reference_union(bake_, pair));
+}
+
+// 0: every PVS stored in full; 4: chains of diffs against neighbouring cells.
+INSTANTIATE_TEST_SUITE_P(Chains, SetOperations, ::testing::Values(0u, 4u));
+
+}  // namespace
