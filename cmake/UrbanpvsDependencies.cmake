@@ -8,3 +8,12 @@ pkg_check_modules(GeographicLib REQUIRED IMPORTED_TARGET geographiclib)  # WGS84
 pkg_check_modules(OSMesa REQUIRED IMPORTED_TARGET osmesa)               # off-screen cull maps
 find_package(glm REQUIRED)                          # the 2D and 3D vector types
 
+# OpenStreetMap input (header-only libosmium; PBF needs zlib and threads, XML expat, .bz2 bzip2).
+find_path(OSMIUM_INCLUDE_DIR osmium/osm.hpp REQUIRED)
+find_package(ZLIB REQUIRED)
+find_package(EXPAT REQUIRED)
+find_package(BZip2 REQUIRED)
+find_package(Threads REQUIRED)
+add_library(Osmium::Osmium INTERFACE IMPORTED)
+target_include_directories(Osmium::Osmium SYSTEM INTERFACE ${OSMIUM_INCLUDE_DIR})
+target_link_libraries(Osmium::Osmium INTERFACE ZLIB::ZLIB EXPAT::EXPAT BZip2::BZip2 Threads::Threads)

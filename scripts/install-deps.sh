@@ -10,6 +10,8 @@ packages=(
   libclang-rt-14-dev
   # geometry: triangulation, straight skeleton, Boolean operations (GPL parts of CGAL)
   libcgal-dev libgmp-dev libmpfr-dev
+  # OpenStreetMap input (PBF and XML)
+  libosmium2-dev
   # coordinates: WGS84 lon/lat -> local metric frame
   libgeographiclib-dev
   # the 2D and 3D vector types of every builder stage

@@ -311,7 +311,10 @@ struct Reader {
 City read_city(const std::vector<std::string>& paths, const ReadOptions& options) {
   if (paths.empty()) throw InputError(InputProblem::EmptyCity, "(no file)", "", "no input file");
   Reader reader{options, {}, {}, {}};
-  for (const std::string& p : paths) reader.add(parse(detail::read_input_file(p), p), p);
+  for (const std::string& p : paths)
+    reader.add(detail::is_osm_file(p) ? detail::read_osm(p, reader.city.report)
+                                      : parse(detail::read_input_file(p), p),
+               p);
   return reader.finish(paths.back());
 }
 

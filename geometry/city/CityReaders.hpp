@@ -38,6 +38,13 @@ InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptio
 void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
                   const ReadOptions& options, City& city);
 
+/// True for the names of OpenStreetMap files (.osm.pbf, .pbf, .osm, .osm.gz, .osm.bz2).
+bool is_osm_file(const std::string& path);
+/// An OpenStreetMap file's buildings and building parts as a GeoJSON FeatureCollection in
+/// lon/lat (OsmReader.cpp): ids "w123" / "r456", tags as properties. Assembly problems (broken
+/// multipolygons, members outside the extract) go to report.warnings, per element id.
+Json read_osm(const std::string& path, ReadReport& report);
+
 /// Turns `o` into a non-occluding object: no occluders, its surfaces block nothing in
 /// validation, its footprint (its box's rectangle when it has none) is taken out of free space
 /// (no view cell inside a building), and `why` is listed in report.non_occluding.

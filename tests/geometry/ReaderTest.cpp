@@ -31,6 +31,7 @@
 #include <cstring>
 #endif
 
+#include "SharedCities.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
@@ -45,7 +46,7 @@ using namespace urbanpvs::geometry;
 using Json = nlohmann::ordered_json;
 
 const fs::path kTestData = URBANPVS_TEST_DATA;
-const fs::path kSharedCities = URBANPVS_SHARED_CITIES;
+using urbanpvs::test::kSharedCities;
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -453,13 +454,6 @@ TEST(RepairableInputData, EveryFileHasAnExpectation) {
 
 // ---------------------------------------------------------------------------------------------
 // Real cities (URBANPVS_SHARED_CITIES)
-
-#define REQUIRE_SHARED_CITY(var, name)                                            \
-  const std::string var = (kSharedCities / (name)).string();                      \
-  if (!fs::is_regular_file(var))                                                  \
-  GTEST_SKIP() << var                                                             \
-               << " is absent (real city extracts live in ../shared/cities; set " \
-                  "URBANPVS_SHARED_CITIES)"
 
 Json load_json(const std::string& path) {
   std::ifstream in(path);

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// OpenStreetMap input (PBF, XML) with libosmium. Buildings and building parts come from closed
+// ways and from multipolygon relations, assembled by osmium's area assembler (which also
+// repairs what it can and reports the rest per object). Each area is handed on as a GeoJSON
+// feature in lon/lat, with the element's tags as properties and "w123" / "r456" as its id, so
+// heights (height, min_height, building:levels, roof:*), parts joining their building,
+// ring repair and the local frame follow exactly the GeoJSON reader's rules.
+#include <cstring>
+#include <osmium/area/assembler.hpp>
+#include <osmium/area/multipolygon_manager.hpp>
+#include <osmium/area/problem_reporter_stream.hpp>
+#include <osmium/handler.hpp>
+#include <osmium/handler/node_locations_for_ways.hpp>
+#include <osmium/index/map/flex_mem.hpp>
+#include <osmium/io/any_input.hpp>
+#include <osmium/relations/manager_util.hpp>
+#include <osmium/tags/tags_filter.hpp>
+#include <osmium/visitor.hpp>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "CityReaders.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+
+namespace urbanpvs::geometry::detail {
+namespace {
+
+std::string element_id(const osmium::Area& a) {
+  return (a.from_way() ? "w" : "r") + std::to_string(a.orig_id());
+}
+
+// One ring as GeoJSON positions; false when a node's location is missing from the extract.
+bool ring_json(const osmium::NodeRefList& ring, Json& out) {
+  out = Json::array();
+  for (const osmium::NodeRef& n : ring) {
+    if (!n.location().valid()) return false;
+    out.push_back(Json::array({n.location().lon(), n.location().lat()}));
+  }
+  return true;
+}
+
+class AreaFeatures : public osmium::handler::Handler {
+ public:
+  AreaFeatures(Json& features, ReadReport& report, const std::string& file)
+      : features_(features), report_(report), file_(file) {}
+
+  void area(const osmium::Area& a) {
+    Json polygons = Json::array();
+    for (const osmium::OuterRing& outer : a.outer_rings()) {
+      Json polygon = Json::array(), ring;
+      bool ok = ring_json(outer, ring);
+      polygon.push_back(std::move(ring));
+      for (const osmium::InnerRing& inner : a.inner_rings(outer)) {
+        ok = ring_json(inner, ring) && ok;
+        polygon.push_back(std::move(ring));
+      }
+      if (!ok) {
+        report_.warnings.push_back(file_ + ": " + element_id(a) +
+                                   ": a node lies outside the extract; that ring is skipped");
+        continue;
+      }
+      polygons.push_back(std::move(polygon));
+    }
+    // An area the assembler could not build has no rings; its problems are reported already.
+    if (polygons.empty()) return;
+    Json properties = Json::object();
+    for (const osmium::Tag& t : a.tags()) properties[t.key()] = t.value();
+    Json geometry = Json::object();
+    geometry["type"] = "MultiPolygon";
+    geometry["coordinates"] = std::move(polygons);
+    Json feature = Json::object();
+    feature["type"] = "Feature";
+    feature["id"] = element_id(a);
+    feature["geometry"] = std::move(geometry);
+    feature["properties"] = std::move(properties);
+    features_.push_back(std::move(feature));
+  }
+
+ private:
+  Json& features_;
+  ReadReport& report_;
+  const std::string& file_;
+};
+
+// The assembler's problems, one line per element and kind of problem: it reports every node of
+// a way that leaves the extract, which would bury the other messages.
+void report_lines(const std::string& text, const std::string& file, ReadReport& report) {
+  std::istringstream lines(text);
+  std::vector<std::pair<std::string, std::size_t>> seen;  // header ("... on w12 (...)"), count
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    const std::size_t end = line.find("): ");
+    const std::string header = end == std::string::npos ? line : line.substr(0, end + 1);
+    if (!seen.empty() && seen.back().first == header) {
+      ++seen.back().second;
+      continue;
+    }
+    seen.emplace_back(header, 1);
+  }
+  for (const auto& [header, count] : seen)
+    report.warnings.push_back(file + ": " + header +
+                              (count > 1 ? " (" + std::to_string(count) + " times)" : ""));
+}
+
+}  // namespace
+
+bool is_osm_file(const std::string& path) {
+  for (const char* ext : {".osm.pbf", ".pbf", ".osm", ".osm.gz", ".osm.bz2"})
+    if (path.size() >= std::strlen(ext) &&
+        path.compare(path.size() - std::strlen(ext), std::string::npos, ext) == 0)
+      return true;
+  return false;
+}
+
+Json read_osm(const std::string& path, ReadReport& report) {
+  read_input_file(path);  // the project's own messages for a missing or unreadable file
+  Json features = Json::array();
+  std::ostringstream problems;
+  try {
+    const osmium::io::File input(path);
+    osmium::area::ProblemReporterStream reporter(problems);
+    osmium::area::Assembler::config_type config;
+    config.problem_reporter = &reporter;
+    // Buildings and their parts; "building=no" is no building.
+    osmium::TagsFilter buildings(false);
+    buildings.add_rule(false, "building", "no");
+    buildings.add_rule(true, "building");
+    buildings.add_rule(false, "building:part", "no");
+    buildings.add_rule(true, "building:part");
+    osmium::area::MultipolygonManager<osmium::area::Assembler> areas(config, buildings);
+    osmium::relations::read_relations(input, areas);  // pass 1: which ways the relations need
+
+    using Index = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
+    Index index;
+    osmium::handler::NodeLocationsForWays<Index> locations(index);
+    locations.ignore_errors();  // a way leaving the extract: its rings are skipped, reported
+    AreaFeatures collect(features, report, path);
+    osmium::io::Reader reader(input, osmium::io::read_meta::no);
+    osmium::apply(reader, locations, areas.handler([&](osmium::memory::Buffer&& buffer) {
+      osmium::apply(buffer, collect);
+    }));
+    reader.close();
+    areas.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& r) {
+      report.warnings.push_back(path + ": r" + std::to_string(r->id()) +
+                                ": multipolygon with members outside the extract; skipped");
+    });
+  } catch (const std::exception& e) {
+    throw InputError(InputProblem::BadStructure, path, "",
+                     std::string("not a readable OpenStreetMap file: ") + e.what());
+  }
+  report_lines(problems.str(), path, report);
+  Json doc = Json::object();
+  doc["type"] = "FeatureCollection";
+  doc["features"] = std::move(features);
+  return doc;
+}
+
+}  // namespace urbanpvs::geometry::detail

@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The OpenStreetMap reader (libosmium): a small OSM XML file written here covers each tag and
+// assembly case; the real Helsinki extract must give the same buildings as its own GeoJSON
+// export (ids, footprints within 1 cm, heights), and every OSM extract in the shared cities
+// loads with the defaults.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "SharedCities.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+
+namespace {
+
+using namespace urbanpvs::geometry;
+namespace fs = std::filesystem;
+
+using urbanpvs::test::kSharedCities;
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / ("urbanpvs_osm_" + name);
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+// Nodes on a 1e-4 degree lattice near Helsinki: node (i, j) has id 1000 + 100 i + j.
+std::string node(int i, int j) {
+  char s[160];
+  std::snprintf(s, sizeof s, "  <node id=\"%d\" version=\"1\" lat=\"%.7f\" lon=\"%.7f\"/>\n",
+                1000 + 100 * i + j, 60.17 + 1e-4 * j, 24.94 + 2e-4 * i);
+  return s;
+}
+
+std::string nd(int i, int j) {
+  return "    <nd ref=\"" + std::to_string(1000 + 100 * i + j) + "\"/>\n";
+}
+
+std::string way(int id, std::initializer_list<std::pair<int, int>> ring, const std::string& tags) {
+  std::string s = "  <way id=\"" + std::to_string(id) + "\" version=\"1\">\n";
+  for (auto [i, j] : ring) s += nd(i, j);
+  return s + tags + "  </way>\n";
+}
+
+std::string tag(const std::string& k, const std::string& v) {
+  return "    <tag k=\"" + k + "\" v=\"" + v + "\"/>\n";
+}
+
+std::string relation(int id, const std::string& members, const std::string& tags) {
+  return "  <relation id=\"" + std::to_string(id) + "\" version=\"1\">\n" + members + tags +
+         "  </relation>\n";
+}
+
+std::string member(int way_id, const char* role) {
+  return "    <member type=\"way\" ref=\"" + std::to_string(way_id) + "\" role=\"" + role +
+         "\"/>\n";
+}
+
+// Elements in the order OSM files have (nodes, ways, relations; ascending ids), which osmium
+// requires.
+std::string sample_osm() {
+  std::string s = "<?xml version=\"1.0\"?>\n<osm version=\"0.6\" generator=\"test\">\n";
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) s += node(i, j);
+  // A building with a height in metres and a unit.
+  s += way(1, {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}},
+           tag("building", "yes") + tag("height", "12 m"));
+  // Height from levels: 4 x 3 m.
+  s += way(2, {{2, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 0}},
+           tag("building", "apartments") + tag("building:levels", "4"));
+  // Not a building.
+  s += way(3, {{4, 0}, {5, 0}, {5, 1}, {4, 1}, {4, 0}}, tag("building", "no"));
+  // A building with a part of it standing higher.
+  s +=
+      way(4, {{6, 0}, {9, 0}, {9, 2}, {6, 2}, {6, 0}}, tag("building", "yes") + tag("height", "9"));
+  s += way(5, {{7, 0}, {8, 0}, {8, 1}, {7, 1}, {7, 0}},
+           tag("building:part", "yes") + tag("height", "30"));
+  // The outer and inner ways of a courtyard multipolygon (tags on the relation).
+  s += way(10, {{0, 3}, {4, 3}, {4, 7}, {0, 7}, {0, 3}}, "");
+  s += way(11, {{1, 4}, {1, 6}, {3, 6}, {3, 4}, {1, 4}}, "");
+  // The only outer way of a multipolygon, not closed: osmium cannot assemble it.
+  s += way(12, {{6, 4}, {8, 4}, {8, 6}, {6, 6}}, "");
+  const std::string mp = tag("type", "multipolygon") + tag("building", "yes");
+  s += relation(20, member(10, "outer") + member(11, "inner"), mp + tag("height", "20"));
+  s += relation(21, member(12, "outer"), mp);
+  // A member way outside the extract.
+  s += relation(22, member(999, "outer"), mp);
+  return s + "</osm>\n";
+}
+
+const CityObject* find(const City& c, const std::string& id) {
+  for (const CityObject& o : c.objects)
+    if (o.source_id == id) return &o;
+  return nullptr;
+}
+
+bool mentions(const std::vector<std::string>& lines, const std::string& a, const std::string& b) {
+  return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+    return l.find(a) != std::string::npos && l.find(b) != std::string::npos;
+  });
+}
+
+TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
+  const std::string path = write_temp("sample.osm", sample_osm());
+  ReadOptions options;
+  options.default_height = 10;
+  const City city = read_city({path}, options);
+  ASSERT_EQ(city.frame.kind, LocalFrame::Kind::Geographic);
+  // w1, w2, r20 and w4 (with its part w5); building=no and the broken relations are not there.
+  std::vector<std::string> ids;
+  for (const CityObject& o : city.objects) ids.push_back(o.source_id);
+  std::sort(ids.begin(), ids.end());
+  EXPECT_EQ(ids, (std::vector<std::string>{"r20", "w1", "w2", "w4"}));
+
+  EXPECT_NEAR(find(city, "w1")->bbox.zmax, 12, 1e-9);
+  EXPECT_NEAR(find(city, "w2")->bbox.zmax, 12, 1e-9);  // 4 levels x 3 m
+  EXPECT_NEAR(find(city, "w4")->bbox.zmax, 30, 1e-9);  // its part reaches 30 m
+  const CityObject* courtyard = find(city, "r20");
+  ASSERT_EQ(courtyard->footprint.size(), 1u);
+  ASSERT_EQ(courtyard->footprint[0].holes.size(), 1u);
+  // Outer 4 x 4 cells of the lattice, inner 2 x 2: three quarters of the outer area is left.
+  const double outer = area(Polygon{courtyard->footprint[0].outer, {}});
+  EXPECT_NEAR(area(courtyard->footprint[0]), outer * 0.75, outer * 1e-6);
+  EXPECT_NEAR(courtyard->bbox.zmax, 20, 1e-9);
+
+  // The assembly problems are reported per element.
+  EXPECT_TRUE(mentions(city.report.warnings, "r21", "")) << "unclosed ring of r21";
+  EXPECT_TRUE(mentions(city.report.warnings, "r22", "outside the extract"));
+  fs::remove(path);
+}
+
+TEST(OsmReader, NotOsmDataIsRefusedNamingTheFile) {
+  const std::string path = write_temp("garbage.osm.pbf", "this is no protocol buffer");
+  try {
+    read_city({path});
+    FAIL() << "garbage accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::BadStructure);
+    EXPECT_EQ(e.file(), path);
+    EXPECT_NE(std::string(e.what()).find("not a readable OpenStreetMap file"), std::string::npos)
+        << e.what();
+  }
+  fs::remove(path);
+  try {
+    read_city({(fs::temp_directory_path() / "urbanpvs_osm_absent.osm.pbf").string()});
+    FAIL() << "absent file accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::Unreadable);
+  }
+}
+
+// "way/123" (the GeoJSON export's @type/@id) is "w123" in the OSM reader.
+std::string osm_style(const std::string& geojson_id) {
+  for (const auto& [long_name, letter] : {std::pair{"way/", "w"}, std::pair{"relation/", "r"}})
+    if (geojson_id.rfind(long_name, 0) == 0)
+      return letter + geojson_id.substr(std::string(long_name).size());
+  return geojson_id;
+}
+
+TEST(OsmReader, HelsinkiPbfGivesTheBuildingsOfItsGeoJsonExport) {
+  REQUIRE_SHARED_CITY(pbf, "Helsinki.osm.pbf");
+  REQUIRE_SHARED_CITY(geojson, "helsinki_buildings.geojson");
+  ReadOptions options;
+  options.default_height = 10;
+  const City from_osm = read_city({pbf}, options);
+  const City from_geojson = read_city({geojson}, options);
+  ASSERT_EQ(from_osm.objects.size(), from_geojson.objects.size());
+  // The same local frame, so footprints compare directly in metres.
+  ASSERT_EQ(from_osm.frame.kind, from_geojson.frame.kind);
+  ASSERT_NEAR(from_osm.frame.origin_lon, from_geojson.frame.origin_lon, 1e-12);
+  ASSERT_NEAR(from_osm.frame.origin_lat, from_geojson.frame.origin_lat, 1e-12);
+  std::map<std::string, const CityObject*> by_id;
+  for (const CityObject& o : from_osm.objects) by_id[o.source_id] = &o;
+  std::size_t compared_vertices = 0;
+  for (const CityObject& g : from_geojson.objects) {
+    const auto it = by_id.find(osm_style(g.source_id));
+    ASSERT_NE(it, by_id.end()) << g.source_id << " missing from the PBF";
+    const CityObject& o = *it->second;
+    EXPECT_EQ(o.occludes, g.occludes) << g.source_id;
+    EXPECT_NEAR(o.bbox.zmax, g.bbox.zmax, 1e-6) << g.source_id;
+    EXPECT_NEAR(o.bbox.zmin, g.bbox.zmin, 1e-6) << g.source_id;
+    EXPECT_EQ(o.occluders.size(), g.occluders.size()) << g.source_id;
+    ASSERT_EQ(o.footprint.size(), g.footprint.size()) << g.source_id;
+    for (std::size_t p = 0; p < g.footprint.size(); ++p) {
+      ASSERT_EQ(o.footprint[p].outer.size(), g.footprint[p].outer.size()) << g.source_id;
+      ASSERT_EQ(o.footprint[p].holes.size(), g.footprint[p].holes.size()) << g.source_id;
+      for (std::size_t k = 0; k < g.footprint[p].outer.size(); ++k, ++compared_vertices) {
+        const Vec2 d = o.footprint[p].outer[k] - g.footprint[p].outer[k];
+        EXPECT_LE(std::hypot(d.x, d.y), 0.01) << g.source_id << " vertex " << k;
+      }
+    }
+  }
+  EXPECT_GT(compared_vertices, 3000u);
+}
+
+TEST(OsmReader, EveryOsmExtractLoadsWithTheDefaults) {
+  std::size_t files = 0;
+  if (!fs::is_directory(kSharedCities)) GTEST_SKIP() << kSharedCities << " is absent";
+  for (const auto& entry : fs::directory_iterator(kSharedCities)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() < 8 || name.substr(name.size() - 8) != ".osm.pbf") continue;
+    ++files;
+    const City city = read_city({entry.path().string()});
+    EXPECT_GT(city.objects.size(), 200u) << name;
+    for (const CityObject& o : city.objects) {
+      ASSERT_TRUE(o.source_id[0] == 'w' || o.source_id[0] == 'r') << name << ": " << o.source_id;
+      ASSERT_GT(o.bbox.zmax, o.bbox.zmin) << name << ": " << o.source_id;
+    }
+  }
+  EXPECT_GE(files, 1u);
+}
+
+}  // namespace
