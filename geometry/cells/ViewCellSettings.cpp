@@ -7,6 +7,11 @@ const SettingTable<ViewCellOptions>& view_cell_settings() {
   using S = SettingStage;
   using V = ViewCellOptions;
   static const SettingTable<V> table = {
+      choice_setting<V::Placement, V>(
+          "cells", S::Cells, {"everywhere", "streets"},
+          "Without --region, cells go into all free space near the buildings, or only onto the "
+          "streets, squares and paths the input maps (OpenStreetMap highways by their width)",
+          [](V& v) -> V::Placement& { return v.placement; }),
       number_setting<V>("epsilon", "m", S::Cells, 0.01, 1000,
                         "Occluder shrinking and sample spacing epsilon (thesis 7.2)",
                         [](V& v) -> double& { return v.epsilon; }),

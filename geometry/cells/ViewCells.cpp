@@ -14,6 +14,7 @@
 #include "BoundarySimplification.hpp"
 #include "FreeSpaceTriangulation.hpp"
 #include "urbanpvs/geometry/cells/GroundHeight.hpp"
+#include "urbanpvs/geometry/cells/StreetRegion.hpp"
 #include "urbanpvs/geometry/cells/ViewCellSamples.hpp"
 #include "urbanpvs/geometry/cells/ViewCellSettings.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
@@ -98,6 +99,17 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
     if (signed_area2(r.outer) < 0) std::reverse(r.outer.begin(), r.outer.end());
     for (Ring& h : r.holes)
       if (signed_area2(h) > 0) std::reverse(h.begin(), h.end());
+  }
+  if (options.placement == ViewCellOptions::Placement::Streets) {
+    if (!mesh.options.region.empty())
+      throw std::invalid_argument(
+          "ViewCellOptions.placement: --cells streets and a region (--region) exclude each "
+          "other");
+    mesh.options.region = street_region(city.streets);
+    if (mesh.options.region.empty())
+      throw std::invalid_argument(
+          "ViewCellOptions.placement: --cells streets, but the input maps no streets "
+          "(OpenStreetMap highway=*, area:highway=*, pedestrian areas, place=square)");
   }
   if (mesh.options.region.empty()) {
     // Within `margin` of some building: for a dense city its bounding rectangle, for

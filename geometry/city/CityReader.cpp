@@ -12,6 +12,7 @@
 #include "BoxGrid.hpp"
 #include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
 namespace urbanpvs::geometry {
 namespace detail {
@@ -280,6 +281,12 @@ struct Reader {
       detail::load_cityjson(doc, name, *mapping, options, city);
     else
       detail::load_geojson(doc, name, *mapping, options, city);
+    if (doc.contains(detail::kStreetsMember)) {
+      StreetNetwork more =
+          detail::osm_streets(doc[detail::kStreetsMember], name, *mapping, city.report);
+      for (StreetLine& l : more.lines) city.streets.lines.push_back(std::move(l));
+      for (Polygon& a : more.areas) city.streets.areas.push_back(std::move(a));
+    }
     relative.resize(city.objects.size(), format == Format::GeoJson);
     city.sources.push_back(name);
   }

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
@@ -37,6 +39,19 @@ void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMap
 InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptions& options);
 void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
                   const ReadOptions& options, City& city);
+
+/// "12", "12.5 m", "12,5m", "40 ft", "40'" -> metres; nullopt when it is no length.
+std::optional<double> parse_length(const Json& v);
+
+/// The member of read_osm's document that lists where people can be: objects with an "id" and
+/// either a "line" (lon/lat positions, with the way's "highway", "width", "est_width" and
+/// "lanes" tags where given) or an "area" (a GeoJSON polygon: rings of lon/lat positions).
+inline constexpr const char* kStreetsMember = "urbanpvs:streets";
+
+/// read_osm's kStreetsMember in the local frame (OsmStreets.cpp): each line with its width in
+/// metres (width, est_width, else lanes, else its highway class), areas repaired.
+StreetNetwork osm_streets(const Json& streets, const std::string& file,
+                          const LocalFrameMapping& mapping, ReadReport& report);
 
 /// True for the names of OpenStreetMap files (.osm.pbf, .pbf, .osm, .osm.gz, .osm.bz2).
 bool is_osm_file(const std::string& path);

@@ -98,29 +98,6 @@ Vec2 position(const Json& p, const std::string& file, const std::string& id) {
   return {json_number(p[0], file, id, "coordinate"), json_number(p[1], file, id, "coordinate")};
 }
 
-// "12", "12.5 m", "12,5m", "40 ft", "40'" -> metres; nullopt when it is no length.
-std::optional<double> parse_length(const Json& v) {
-  if (v.is_number()) {
-    const double d = v.get<double>();
-    return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
-  }
-  if (!v.is_string()) return std::nullopt;
-  std::string s = v.get<std::string>();
-  for (char& ch : s)
-    if (ch == ',') ch = '.';
-  const char* begin = s.c_str();
-  char* end = nullptr;
-  const double d = std::strtod(begin, &end);
-  if (end == begin || !std::isfinite(d)) return std::nullopt;
-  std::string unit(end);
-  unit.erase(0, unit.find_first_not_of(" \t"));
-  unit.erase(unit.find_last_not_of(" \t") + 1);
-  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres")
-    return d;
-  if (unit == "ft" || unit == "'" || unit == "feet") return d * 0.3048;
-  return std::nullopt;
-}
-
 struct Feature {
   std::string id;
   std::vector<Polygon> polygons;
@@ -354,6 +331,28 @@ Box2 raw_box(const Json& feature, const std::string& file, const std::string& id
 }
 
 }  // namespace
+
+std::optional<double> parse_length(const Json& v) {
+  if (v.is_number()) {
+    const double d = v.get<double>();
+    return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
+  }
+  if (!v.is_string()) return std::nullopt;
+  std::string s = v.get<std::string>();
+  for (char& ch : s)
+    if (ch == ',') ch = '.';
+  const char* begin = s.c_str();
+  char* end = nullptr;
+  const double d = std::strtod(begin, &end);
+  if (end == begin || !std::isfinite(d)) return std::nullopt;
+  std::string unit(end);
+  unit.erase(0, unit.find_first_not_of(" \t"));
+  unit.erase(unit.find_last_not_of(" \t") + 1);
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres")
+    return d;
+  if (unit == "ft" || unit == "'" || unit == "feet") return d * 0.3048;
+  return std::nullopt;
+}
 
 InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptions& options) {
   InputScan scan;

@@ -5,6 +5,10 @@
 // feature in lon/lat, with the element's tags as properties and "w123" / "r456" as its id, so
 // heights (height, min_height, building:levels, roof:*), parts joining their building,
 // ring repair and the local frame follow exactly the GeoJSON reader's rules.
+//
+// Where people can be (for --cells streets) is collected in the same pass: highway=* lines
+// with their width tags, and street areas (area:highway=*, pedestrian areas, place=square),
+// under the document's "urbanpvs:streets" member; StreetAreas.cpp turns them into polygons.
 #include <cstring>
 #include <osmium/area/assembler.hpp>
 #include <osmium/area/multipolygon_manager.hpp>
@@ -40,22 +44,58 @@ bool ring_json(const osmium::NodeRefList& ring, Json& out) {
   return true;
 }
 
+bool is_building(const osmium::TagList& tags) {
+  const char* b = tags["building"];
+  const char* p = tags["building:part"];
+  return (b != nullptr && std::strcmp(b, "no") != 0) || (p != nullptr && std::strcmp(p, "no") != 0);
+}
+
+// An area where people walk or drive: mapped street surfaces, pedestrian zones, squares.
+bool is_street_area(const osmium::TagList& tags, bool from_way) {
+  if (tags.has_key("area:highway") || tags.has_tag("place", "square")) return true;
+  // A closed pedestrian way is a zone only when it says so; else it is a loop of street.
+  return tags.has_tag("highway", "pedestrian") && (!from_way || tags.has_tag("area", "yes"));
+}
+
+// Highway values that are no way a person is on (yet, or any more), and what is no line.
+bool is_street_line(const osmium::Way& w) {
+  const char* h = w.tags()["highway"];
+  if (h == nullptr || w.tags().has_tag("area", "yes")) return false;
+  for (const char* no :
+       {"proposed", "construction", "abandoned", "disused", "razed", "no", "platform", "bus_stop",
+        "elevator", "street_lamp", "services", "rest_area"})
+    if (std::strcmp(h, no) == 0) return false;
+  return w.nodes().size() >= 2;
+}
+
+// An outer ring and its inner rings as a GeoJSON polygon; false when a node is missing.
+bool polygon_json(const osmium::Area& a, const osmium::OuterRing& outer, Json& out) {
+  out = Json::array();
+  Json ring;
+  bool ok = ring_json(outer, ring);
+  out.push_back(std::move(ring));
+  for (const osmium::InnerRing& inner : a.inner_rings(outer)) {
+    ok = ring_json(inner, ring) && ok;
+    out.push_back(std::move(ring));
+  }
+  return ok;
+}
+
 class AreaFeatures : public osmium::handler::Handler {
  public:
-  AreaFeatures(Json& features, ReadReport& report, const std::string& file)
-      : features_(features), report_(report), file_(file) {}
+  AreaFeatures(Json& features, Json& streets, ReadReport& report, const std::string& file)
+      : features_(features), streets_(streets), report_(report), file_(file) {}
 
   void area(const osmium::Area& a) {
+    const bool building = is_building(a.tags());
+    if (!building) {
+      if (is_street_area(a.tags(), a.from_way())) add_street_area(a);
+      return;
+    }
     Json polygons = Json::array();
     for (const osmium::OuterRing& outer : a.outer_rings()) {
-      Json polygon = Json::array(), ring;
-      bool ok = ring_json(outer, ring);
-      polygon.push_back(std::move(ring));
-      for (const osmium::InnerRing& inner : a.inner_rings(outer)) {
-        ok = ring_json(inner, ring) && ok;
-        polygon.push_back(std::move(ring));
-      }
-      if (!ok) {
+      Json polygon;
+      if (!polygon_json(a, outer, polygon)) {
         report_.warnings.push_back(file_ + ": " + element_id(a) +
                                    ": a node lies outside the extract; that ring is skipped");
         continue;
@@ -77,8 +117,32 @@ class AreaFeatures : public osmium::handler::Handler {
     features_.push_back(std::move(feature));
   }
 
+  void way(const osmium::Way& w) {
+    if (!is_street_line(w)) return;
+    Json line;
+    if (!ring_json(w.nodes(), line)) return;  // leaves the extract: the street is cut there
+    Json street = Json::object();
+    street["id"] = "w" + std::to_string(w.id());
+    street["line"] = std::move(line);
+    for (const char* key : {"highway", "width", "est_width", "lanes"})
+      if (const char* v = w.tags()[key]) street[key] = v;
+    streets_.push_back(std::move(street));
+  }
+
  private:
+  void add_street_area(const osmium::Area& a) {
+    for (const osmium::OuterRing& outer : a.outer_rings()) {
+      Json polygon;
+      if (!polygon_json(a, outer, polygon)) continue;
+      Json street = Json::object();
+      street["id"] = element_id(a);
+      street["area"] = std::move(polygon);
+      streets_.push_back(std::move(street));
+    }
+  }
+
   Json& features_;
+  Json& streets_;
   ReadReport& report_;
   const std::string& file_;
 };
@@ -115,29 +179,32 @@ bool is_osm_file(const std::string& path) {
 
 Json read_osm(const std::string& path, ReadReport& report) {
   read_input_file(path);  // the project's own messages for a missing or unreadable file
-  Json features = Json::array();
+  Json features = Json::array(), streets = Json::array();
   std::ostringstream problems;
   try {
     const osmium::io::File input(path);
     osmium::area::ProblemReporterStream reporter(problems);
     osmium::area::Assembler::config_type config;
     config.problem_reporter = &reporter;
-    // Buildings and their parts; "building=no" is no building.
-    osmium::TagsFilter buildings(false);
-    buildings.add_rule(false, "building", "no");
-    buildings.add_rule(true, "building");
-    buildings.add_rule(false, "building:part", "no");
-    buildings.add_rule(true, "building:part");
-    osmium::area::MultipolygonManager<osmium::area::Assembler> areas(config, buildings);
+    // Buildings and their parts ("building=no" is no building), and street areas.
+    osmium::TagsFilter wanted(false);
+    wanted.add_rule(false, "building", "no");
+    wanted.add_rule(true, "building");
+    wanted.add_rule(false, "building:part", "no");
+    wanted.add_rule(true, "building:part");
+    wanted.add_rule(true, "area:highway");
+    wanted.add_rule(true, "highway", "pedestrian");
+    wanted.add_rule(true, "place", "square");
+    osmium::area::MultipolygonManager<osmium::area::Assembler> areas(config, wanted);
     osmium::relations::read_relations(input, areas);  // pass 1: which ways the relations need
 
     using Index = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
     Index index;
     osmium::handler::NodeLocationsForWays<Index> locations(index);
     locations.ignore_errors();  // a way leaving the extract: its rings are skipped, reported
-    AreaFeatures collect(features, report, path);
+    AreaFeatures collect(features, streets, report, path);
     osmium::io::Reader reader(input, osmium::io::read_meta::no);
-    osmium::apply(reader, locations, areas.handler([&](osmium::memory::Buffer&& buffer) {
+    osmium::apply(reader, locations, collect, areas.handler([&](osmium::memory::Buffer&& buffer) {
       osmium::apply(buffer, collect);
     }));
     reader.close();
@@ -153,6 +220,7 @@ Json read_osm(const std::string& path, ReadReport& report) {
   Json doc = Json::object();
   doc["type"] = "FeatureCollection";
   doc["features"] = std::move(features);
+  doc[kStreetsMember] = std::move(streets);
   return doc;
 }
 

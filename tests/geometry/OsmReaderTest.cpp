@@ -10,9 +10,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <string>
 
 #include "SharedCities.hpp"
+#include "urbanpvs/geometry/cells/StreetRegion.hpp"
+#include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 
@@ -66,7 +69,7 @@ std::string member(int way_id, const char* role) {
 std::string sample_osm() {
   std::string s = "<?xml version=\"1.0\"?>\n<osm version=\"0.6\" generator=\"test\">\n";
   for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 10; ++j) s += node(i, j);
+    for (int j = 0; j < 12; ++j) s += node(i, j);
   // A building with a height in metres and a unit.
   s += way(1, {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}},
            tag("building", "yes") + tag("height", "12 m"));
@@ -85,6 +88,13 @@ std::string sample_osm() {
   s += way(11, {{1, 4}, {1, 6}, {3, 6}, {3, 4}, {1, 4}}, "");
   // The only outer way of a multipolygon, not closed: osmium cannot assemble it.
   s += way(12, {{6, 4}, {8, 4}, {8, 6}, {6, 6}}, "");
+  // Streets: a residential street 8 m wide, a footway of its class's width (3 m), a street
+  // under construction (no street yet) and a pedestrian zone mapped as an area.
+  s += way(30, {{0, 8}, {9, 8}}, tag("highway", "residential") + tag("width", "8 m"));
+  s += way(31, {{0, 9}, {3, 9}}, tag("highway", "footway"));
+  s += way(32, {{5, 9}, {9, 9}}, tag("highway", "construction"));
+  s += way(33, {{5, 10}, {7, 10}, {7, 11}, {5, 11}, {5, 10}},
+           tag("highway", "pedestrian") + tag("area", "yes"));
   const std::string mp = tag("type", "multipolygon") + tag("building", "yes");
   s += relation(20, member(10, "outer") + member(11, "inner"), mp + tag("height", "20"));
   s += relation(21, member(12, "outer"), mp);
@@ -132,6 +142,81 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
   EXPECT_TRUE(mentions(city.report.warnings, "r21", "")) << "unclosed ring of r21";
   EXPECT_TRUE(mentions(city.report.warnings, "r22", "outside the extract"));
   fs::remove(path);
+}
+
+// East-west distance between lattice columns i0 and i1 on row j (about 11.07 m a column).
+double street_length(int i0, int i1, int j) {
+  return 2e-4 * (i1 - i0) * 111320.0 * std::cos((60.17 + 1e-4 * j) * std::numbers::pi / 180);
+}
+
+TEST(OsmReader, StreetsAreHighwaysBufferedByTheirWidthAndStreetAreas) {
+  const std::string path = write_temp("streets.osm", sample_osm());
+  ReadOptions options;
+  options.default_height = 10;
+  const City city = read_city({path}, options);
+  fs::remove(path);
+  // The two streets with their widths (the one under construction is none yet), the zone.
+  ASSERT_EQ(city.streets.lines.size(), 2u);
+  EXPECT_EQ(city.streets.lines[0].id, "w30");
+  EXPECT_EQ(city.streets.lines[0].width, 8);
+  EXPECT_EQ(city.streets.lines[1].id, "w31");
+  EXPECT_EQ(city.streets.lines[1].width, 3);  // a footway's class width
+  ASSERT_EQ(city.streets.areas.size(), 1u);
+  // The region: three disjoint pieces, the residential street, the footway, the zone.
+  const std::vector<Polygon> region = street_region(city.streets);
+  ASSERT_EQ(region.size(), 3u);
+  std::vector<double> areas;
+  for (const Polygon& p : region) areas.push_back(area(p));
+  std::sort(areas.begin(), areas.end());
+  // Length x width plus the two half octagons at the ends (an octagon whose sides are h from
+  // its centre has 8 tan(π/8) h²); the footway's strip is the region's minimum width, 6 m.
+  const double octagon = 8 * std::tan(std::numbers::pi / 8);
+  const double residential = street_length(0, 9, 8) * 8 + octagon * 16;
+  const double footway = street_length(0, 3, 9) * 6 + octagon * 9;
+  const double zone = street_length(5, 7, 10) * (1e-4 * 111320.0 * 1.0);
+  EXPECT_NEAR(areas[2], residential, 0.03 * residential);
+  EXPECT_NEAR(areas[0], footway, 0.05 * footway);
+  EXPECT_NEAR(areas[1], zone, 0.05 * zone);
+}
+
+TEST(OsmReader, CellsOnlyOnTheStreets) {
+  const std::string path = write_temp("cells.osm", sample_osm());
+  ReadOptions read;
+  read.default_height = 10;
+  const City city = read_city({path}, read);
+  fs::remove(path);
+  ViewCellOptions everywhere, streets;
+  streets.placement = ViewCellOptions::Placement::Streets;
+  const ViewCellMesh all = build_view_cells(city, everywhere);
+  const ViewCellMesh on_streets = build_view_cells(city, streets);
+  ASSERT_GT(on_streets.cells.size(), 0u);
+  EXPECT_LT(on_streets.cells.size(), all.cells.size() / 2);
+  double cell_area = 0, street_area = 0;
+  const std::vector<Polygon> region = street_region(city.streets);
+  for (const ViewCell& c : on_streets.cells) {
+    const Vec2 centre = (c.corner[0] + c.corner[1] + c.corner[2]) / 3.0;
+    EXPECT_TRUE(std::any_of(region.begin(), region.end(),
+                            [&](const Polygon& p) { return inside(p, centre); }))
+        << "a cell off the streets at " << centre.x << ", " << centre.y;
+    cell_area += std::abs(cross(c.corner[1] - c.corner[0], c.corner[2] - c.corner[0])) / 2;
+  }
+  for (const Polygon& p : region) street_area += area(p);
+  EXPECT_LE(cell_area, street_area * (1 + 1e-6));
+  EXPECT_GT(cell_area, 0.8 * street_area);  // the sample's streets pass no building
+
+  // Streets and a region exclude each other; an input without streets cannot have street cells.
+  ViewCellOptions both = streets;
+  both.region.push_back(Polygon{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}});
+  EXPECT_THROW(build_view_cells(city, both), std::invalid_argument);
+  City no_streets = city;
+  no_streets.streets = {};
+  try {
+    build_view_cells(no_streets, streets);
+    FAIL() << "street cells without streets";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the input maps no streets"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(OsmReader, NotOsmDataIsRefusedNamingTheFile) {

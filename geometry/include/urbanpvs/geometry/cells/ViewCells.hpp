@@ -19,6 +19,11 @@ namespace urbanpvs::geometry {
 /// view_cell_settings() (ViewCellSettings.hpp), the table every tool binds; they keep the output
 /// size sane (cells grow with area / max_cell_edge², samples with perimeter / epsilon).
 struct ViewCellOptions {
+  /// Where cells go when no `region` is given: all free space near the buildings, or only
+  /// where the input maps streets, squares and paths (City::streets; thesis 5.3 used
+  /// street cells too). A walking or driving simulator needs no cells in backyards.
+  enum class Placement { Everywhere, Streets };
+  Placement placement = Placement::Everywhere;
   /// Longest allowed cell edge. Smaller cells give tighter PVSs but more cells (thesis 5.3; the
   /// thesis's 8 km² Vienna model had 82,300 cells). The default gives 82,800 cells on a
   /// generated Vienna-scale city (8 km², ~2,000 blocks, seed 7). [Units: m]
@@ -60,9 +65,9 @@ struct ViewCellOptions {
   /// min(min_cell_edge, max_cell_edge / 2)). [Units: m]
   double min_cell_edge = 6.0;
   /// The region to subdivide, in the city's local frame: the union of these polygons (simple
-  /// rings; orientation does not matter). Empty: the union of the buildings' bounding
-  /// rectangles grown by `margin`. ViewCellMesh::options holds the region used, oriented like
-  /// footprints.
+  /// rings; orientation does not matter). Empty: street_region(city.streets) with
+  /// Placement::Streets, else the union of the buildings' bounding rectangles grown by
+  /// `margin`. ViewCellMesh::options holds the region used, oriented like footprints.
   std::vector<Polygon> region;
 };
 

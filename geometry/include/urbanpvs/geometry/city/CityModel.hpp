@@ -107,10 +107,28 @@ struct ReadReport {
   std::string coordinate_note;  ///< how the CRS / lon-lat decision was made
 };
 
+/// A street or path as the input maps it: its centre line (local frame) and its width.
+struct StreetLine {
+  std::string id;  ///< "w123" for an OpenStreetMap way
+  std::vector<Vec2> points;
+  double width = 0;  ///< [Units: m]
+};
+
+/// Where people can be: centre lines with their widths, and areas (street surfaces,
+/// pedestrian zones, squares). Both may overlap each other and buildings.
+struct StreetNetwork {
+  std::vector<StreetLine> lines;
+  std::vector<Polygon> areas;
+  bool empty() const { return lines.empty() && areas.empty(); }
+};
+
 struct City {
   LocalFrame frame;
   std::vector<CityObject> objects;
   Terrain terrain;
+  /// Where people can be, as the input maps it (OpenStreetMap); empty for inputs that map no
+  /// streets. The view cells place cells on it with --cells streets.
+  StreetNetwork streets;
   ReadReport report;
   std::vector<std::string> sources;  ///< files read, in order
 
