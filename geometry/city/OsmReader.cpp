@@ -8,7 +8,8 @@
 //
 // Where people can be (for --cells streets) is collected in the same pass: highway=* lines
 // with their width tags, and street areas (area:highway=*, pedestrian areas, place=square),
-// under the document's "urbanpvs:streets" member; StreetAreas.cpp turns them into polygons.
+// under the document's "urbanpvs:streets" member; OsmStreets.cpp reads them into the city and
+// cells/StreetRegion.cpp turns them into polygons when --cells streets asks for them.
 #include <cstring>
 #include <osmium/area/assembler.hpp>
 #include <osmium/area/multipolygon_manager.hpp>
