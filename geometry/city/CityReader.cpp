@@ -78,13 +78,18 @@ bool is_geographic_crs(const std::string& c) {
   return c == "OGC:CRS84" || c == "EPSG:4326" || c == "EPSG:4979";
 }
 
-std::string read_input_file(const std::string& path) {
+std::ifstream open_input_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(InputProblem::Unreadable, path, "",
                      std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputProblem::Unreadable, path, "", "cannot open file");
+  return in;
+}
+
+std::string read_input_file(const std::string& path) {
+  std::ifstream in = open_input_file(path);
   std::ostringstream s;
   s << in.rdbuf();
   if (in.bad()) throw InputError(InputProblem::Unreadable, path, "", "read failed");

@@ -3,6 +3,7 @@
 // steps: scan (reference system and extent, to choose the local frame) and load (objects).
 #pragma once
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -28,6 +29,8 @@ struct InputScan {
 /// The whole file; InputError (Unreadable) naming it when it is missing, not a regular file or
 /// cannot be read.
 std::string read_input_file(const std::string& path);
+/// The same checks without reading: the file opened, for readers that read it themselves.
+std::ifstream open_input_file(const std::string& path);
 
 std::string normalise_crs(const std::string& name, const std::string& file);
 bool is_geographic_crs(const std::string& normalised);

@@ -179,7 +179,7 @@ bool is_osm_file(const std::string& path) {
 }
 
 Json read_osm(const std::string& path, ReadReport& report) {
-  read_input_file(path);  // the project's own messages for a missing or unreadable file
+  open_input_file(path);  // the project's own messages for a missing or unreadable file
   Json features = Json::array(), streets = Json::array();
   std::ostringstream problems;
   try {
