@@ -3,6 +3,8 @@
 //
 //   runtime_benchmark                      all benchmarks
 //   runtime_benchmark --benchmark_filter=Query
+//   runtime_benchmark --files A.pvs [B.pvs ...]   real bakes: one table row per format
+//                                                 (RuntimeFileTable.cpp)
 //
 // Counters: query_p50_ns / query_p90_ns / query_p99_ns (locate + iterate the PVS, timed one by
 // one, timer overhead subtracted), bytes_per_cell (pvs section / cells), ratio_vs_plain (pvs
@@ -14,7 +16,9 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <string_view>
 
+#include "RuntimeFileTable.hpp"
 #include "SyntheticCity.hpp"
 #include "urbanpvs/runtime/Format.hpp"
 #include "urbanpvs/runtime/PvsFile.hpp"
@@ -251,4 +255,13 @@ BENCHMARK(BM_CityStatistics)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (argc >= 2 && std::string_view(argv[1]) == "--files") {
+    return urbanpvs::bench::run_file_table(argc - 2, argv + 2);
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -6,6 +6,8 @@
 #include "urbanpvs/urbanpvs.h"
 
 using urbanpvs::runtime::CellGeometry;
+using urbanpvs::runtime::IndexSpan;
+using urbanpvs::runtime::LoadOptions;
 using urbanpvs::runtime::ObjectInfo;
 using urbanpvs::runtime::PvsDecoder;
 using urbanpvs::runtime::PvsFile;
@@ -41,6 +43,7 @@ URBANPVS_SAME(URBANPVS_OUT_OF_MEMORY, kOutOfMemory);
 URBANPVS_SAME(URBANPVS_IO_ERROR, kIoError);
 URBANPVS_SAME(URBANPVS_NOT_GEOGRAPHIC, kNotGeographic);
 URBANPVS_SAME(URBANPVS_INVALID_ARGUMENT, kInvalidArgument);
+URBANPVS_SAME(URBANPVS_NOT_EXPANDED, kNotExpanded);
 #undef URBANPVS_SAME
 static_assert(URBANPVS_NO_CELL == urbanpvs::runtime::kNoCell, "URBANPVS_NO_CELL differs");
 
@@ -78,6 +81,16 @@ urbanpvs_status urbanpvs_open_memory(const void* data, size_t size, urbanpvs_fil
 urbanpvs_status urbanpvs_open_file(const char* path, urbanpvs_file** out) {
   if (path == nullptr) return URBANPVS_INVALID_ARGUMENT;
   return open_with(out, [&](PvsFile& f) { return PvsFile::open_file(path, f); });
+}
+
+urbanpvs_status urbanpvs_open_file_flags(const char* path, uint32_t flags, urbanpvs_file** out) {
+  if (path == nullptr || (flags & ~URBANPVS_OPEN_EXPAND_PVS) != 0) {
+    if (out != nullptr) *out = nullptr;
+    return URBANPVS_INVALID_ARGUMENT;
+  }
+  LoadOptions options;
+  options.expand_pvs = (flags & URBANPVS_OPEN_EXPAND_PVS) != 0;
+  return open_with(out, [&](PvsFile& f) { return PvsFile::open_file(path, f, options); });
 }
 
 void urbanpvs_close(urbanpvs_file* file) {
@@ -130,6 +143,17 @@ urbanpvs_status urbanpvs_pvs(const urbanpvs_file* file, uint32_t cell, uint32_t*
 
 int urbanpvs_is_visible(const urbanpvs_file* file, uint32_t cell, uint32_t object) {
   return file != nullptr && file->file.is_visible(cell, object) ? 1 : 0;
+}
+
+urbanpvs_status urbanpvs_pvs_span(const urbanpvs_file* file, uint32_t cell, const uint32_t** data,
+                                  size_t* count) {
+  if (file == nullptr || data == nullptr || count == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  IndexSpan span;
+  const Status status = file->file.pvs_span(cell, span);
+  if (status != Status::kOk) return to_c(status);
+  *data = span.data;
+  *count = span.size;
+  return URBANPVS_OK;
 }
 
 urbanpvs_status urbanpvs_object(const urbanpvs_file* file, uint32_t object, const char** id,

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The cells section: one fixed 76-byte record per view cell (FORMAT.md, "cells"). Triangles
-// stay float64: they are what locate() tests points against, and rounding them would open
-// cracks between neighbouring cells.
+// The cells section of version 1.x: one fixed 76-byte record per view cell (FORMAT.md, "cells,
+// version 1"). Read into the same decoded table as version 2, so queries do not care which
+// version a file has.
 #include <cmath>
 
 #include "ByteReader.hpp"
@@ -15,13 +15,9 @@ constexpr std::size_t kHeaderSize = 8;  // count u32, reserved u32
 constexpr std::size_t kRecordSize = format::kCellRecordSize;
 static_assert(kRecordSize == 6 * 8 + 2 * 8 + 3 * 4, "triangle, z range, neighbours");
 
-const unsigned char* record(const CellsView& view, std::uint32_t index) noexcept {
-  return view.records + std::size_t{index} * kRecordSize;
-}
-
 }  // namespace
 
-std::vector<unsigned char> write_cells(const std::vector<CellRecord>& cells) {
+std::vector<unsigned char> write_cells_v1(const std::vector<CellRecord>& cells) {
   ByteWriter w;
   w.u32(static_cast<std::uint32_t>(cells.size()));
   w.u32(0);
@@ -37,7 +33,7 @@ std::vector<unsigned char> write_cells(const std::vector<CellRecord>& cells) {
   return std::move(w.bytes());
 }
 
-bool read_cells(const SectionBytesView& in, CellsView& out, const char*& detail) {
+bool read_cells_v1(const SectionBytesView& in, CellTable& out, const char*& detail) {
   ByteReader r(in.data, in.size);
   std::uint32_t reserved;
   std::uint64_t records_size;
@@ -47,48 +43,43 @@ bool read_cells(const SectionBytesView& in, CellsView& out, const char*& detail)
     detail = "cells: count does not match the section length";
     return false;
   }
-  out.records = in.data + kHeaderSize;
+  out.shapes.resize(out.count);
+  out.neighbours.resize(out.count);
+  out.grid_density = 1;  // unused: 1.x files store their grid
   for (std::uint32_t i = 0; i < out.count; ++i) {
-    const unsigned char* rec = record(out, i);
+    const unsigned char* rec = in.data + kHeaderSize + std::size_t{i} * kRecordSize;
+    double v[8];
     for (int k = 0; k < 8; ++k) {
-      if (!std::isfinite(load_f64(rec + 8 * k))) {
+      v[k] = load_f64(rec + 8 * k);
+      if (!std::isfinite(v[k])) {
         detail = "cells: non-finite coordinate";
         return false;
       }
     }
-    if (!(load_f64(rec + 48) <= load_f64(rec + 56))) {
+    if (!(v[6] <= v[7])) {
       detail = "cells: z_min above z_max";
       return false;
     }
+    out.shapes[i] = {{Point2{v[0], v[1]}, Point2{v[2], v[3]}, Point2{v[4], v[5]}}, v[6], v[7]};
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t n = load_u32(rec + 64 + 4 * k);
       if (n != kNoCell && n >= out.count) {
         detail = "cells: neighbour index out of range";
         return false;
       }
+      out.neighbours[i][static_cast<std::size_t>(k)] = n;
     }
   }
   return true;
 }
 
-std::array<Point2, 3> triangle_at(const CellsView& view, std::uint32_t index) noexcept {
-  const unsigned char* rec = record(view, index);
-  return {Point2{load_f64(rec), load_f64(rec + 8)}, Point2{load_f64(rec + 16), load_f64(rec + 24)},
-          Point2{load_f64(rec + 32), load_f64(rec + 40)}};
-}
-
-void z_range_at(const CellsView& view, std::uint32_t index, double& z_min, double& z_max) noexcept {
-  const unsigned char* rec = record(view, index);
-  z_min = load_f64(rec + 48);
-  z_max = load_f64(rec + 56);
-}
-
-CellGeometry cell_at(const CellsView& view, std::uint32_t index) noexcept {
+CellGeometry cell_at(const CellTable& table, std::uint32_t index) noexcept {
   CellGeometry c;
-  c.triangle = triangle_at(view, index);
-  z_range_at(view, index, c.z_min, c.z_max);
-  const unsigned char* rec = record(view, index);
-  for (int k = 0; k < 3; ++k) c.neighbours[k] = load_u32(rec + 64 + 4 * k);
+  const CellShape& s = table.shapes[index];
+  c.triangle = s.triangle;
+  c.z_min = s.z_min;
+  c.z_max = s.z_max;
+  c.neighbours = table.neighbours[index];
   return c;
 }
 

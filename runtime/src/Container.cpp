@@ -46,7 +46,7 @@ Status read_container(const unsigned char* data, std::size_t size, bool verify_c
   }
   if (size < 10) return fail(error, Status::kTruncated, "file ends inside the header");
   info.major = load_u16(data + 8);
-  if (info.major != kMajorVersion) {
+  if (info.major < format::kOldestMajorVersion || info.major > kMajorVersion) {
     return fail(error, Status::kUnsupportedVersion,
                 info.major > kMajorVersion ? "newer major version than this reader supports"
                                            : "older major version than this reader supports");
@@ -75,7 +75,8 @@ Status read_container(const unsigned char* data, std::size_t size, bool verify_c
   const std::uint64_t table_end =
       kFixedHeaderSize + std::uint64_t{section_count} * kSectionEntrySize;
   // A newer minor version may append header fields after the table; ours may not.
-  if (table_end > header_size || (info.minor <= kMinorVersion && table_end != header_size)) {
+  if (table_end > header_size ||
+      (info.minor <= format::latest_minor(info.major) && table_end != header_size)) {
     return fail(error, Status::kMalformedHeader, "header size does not match the section count");
   }
   if ((info.required_features & ~kKnownRequiredFeatures) != 0) {
@@ -115,7 +116,8 @@ Status read_container(const unsigned char* data, std::size_t size, bool verify_c
   return Status::kOk;
 }
 
-std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections) {
+std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections,
+                                       std::uint16_t major) {
   using namespace format;
   const std::uint32_t header_size =
       kFixedHeaderSize + static_cast<std::uint32_t>(sections.size()) * kSectionEntrySize;
@@ -124,8 +126,8 @@ std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections
 
   ByteWriter w;
   w.raw(kMagic, sizeof kMagic);
-  w.u16(kMajorVersion);
-  w.u16(kMinorVersion);
+  w.u16(major);
+  w.u16(format::latest_minor(major));
   w.u32(header_size);
   w.u64(file_size);
   w.u32(static_cast<std::uint32_t>(sections.size()));

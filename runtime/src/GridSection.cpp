@@ -12,12 +12,12 @@ namespace {
 
 constexpr std::size_t kHeaderSize = 48;
 
-bool list_contains(const GridView& g, std::size_t grid_cell, std::uint32_t cell) noexcept {
-  std::uint32_t lo = load_u32(g.offsets + 4 * grid_cell);
-  std::uint32_t hi = load_u32(g.offsets + 4 * (grid_cell + 1));
+bool list_contains(const GridIndex& g, std::size_t grid_cell, std::uint32_t cell) noexcept {
+  std::uint32_t lo = g.offsets[grid_cell];
+  std::uint32_t hi = g.offsets[grid_cell + 1];
   while (lo < hi) {  // lists are ascending: binary search
     const std::uint32_t mid = lo + (hi - lo) / 2;
-    const std::uint32_t v = load_u32(g.entries + 4 * std::size_t{mid});
+    const std::uint32_t v = g.entries[mid];
     if (v == cell) return true;
     if (v < cell) {
       lo = mid + 1;
@@ -49,14 +49,13 @@ std::vector<unsigned char> write_grid(const BuiltGrid& grid) {
   return std::move(w.bytes());
 }
 
-bool read_grid(const SectionBytesView& in, const CellsView& cells, GridView& out,
+bool read_grid(const SectionBytesView& in, const CellTable& cells, GridIndex& out,
                const char*& detail) {
   ByteReader r(in.data, in.size);
   GridGeometry& g = out.geometry;
-  std::uint32_t reserved;
+  std::uint32_t reserved, entry_count;
   if (!r.f64(g.origin_x) || !r.f64(g.origin_y) || !r.f64(g.size_x) || !r.f64(g.size_y) ||
-      !r.u32(g.nx) || !r.u32(g.ny) || !r.u32(out.entry_count) || !r.u32(reserved) ||
-      reserved != 0) {
+      !r.u32(g.nx) || !r.u32(g.ny) || !r.u32(entry_count) || !r.u32(reserved) || reserved != 0) {
     detail = "grid: section shorter than its header";
     return false;
   }
@@ -67,34 +66,39 @@ bool read_grid(const SectionBytesView& in, const CellsView& cells, GridView& out
   }
   std::uint64_t grid_cells, table_bytes;
   if (!checked_mul(g.nx, g.ny, grid_cells) ||
-      !checked_mul(grid_cells + 1 + std::uint64_t{out.entry_count}, 4, table_bytes) ||
+      !checked_mul(grid_cells + 1 + std::uint64_t{entry_count}, 4, table_bytes) ||
       table_bytes > r.remaining() || (table_bytes != r.remaining() && !in.allow_extension)) {
     detail = "grid: size does not match the section length";
     return false;
   }
-  out.offsets = in.data + kHeaderSize;
-  out.entries = out.offsets + 4 * (grid_cells + 1);
-  if (load_u32(out.offsets) != 0) {
+  // Copied out of the file (bounded by the section length): queries read one grid whatever the
+  // file's version.
+  const unsigned char* offsets = in.data + kHeaderSize;
+  out.offsets.resize(static_cast<std::size_t>(grid_cells + 1));
+  for (std::size_t c = 0; c < out.offsets.size(); ++c) out.offsets[c] = load_u32(offsets + 4 * c);
+  out.entries.resize(entry_count);
+  const unsigned char* entries = offsets + 4 * (grid_cells + 1);
+  for (std::size_t e = 0; e < entry_count; ++e) out.entries[e] = load_u32(entries + 4 * e);
+  if (out.offsets[0] != 0) {
     detail = "grid: first offset not zero";
     return false;
   }
   for (std::uint64_t c = 0; c < grid_cells; ++c) {
-    const std::uint32_t begin = load_u32(out.offsets + 4 * c);
-    const std::uint32_t end = load_u32(out.offsets + 4 * (c + 1));
-    if (end < begin || end > out.entry_count) {
+    const std::uint32_t begin = out.offsets[c];
+    const std::uint32_t end = out.offsets[c + 1];
+    if (end < begin || end > entry_count) {
       detail = "grid: offsets not increasing";
       return false;
     }
     for (std::uint32_t e = begin; e < end; ++e) {
-      const std::uint32_t v = load_u32(out.entries + 4 * std::size_t{e});
-      if (v >= cells.count ||
-          (e > begin && v <= load_u32(out.entries + 4 * (std::size_t{e} - 1)))) {
+      const std::uint32_t v = out.entries[e];
+      if (v >= cells.count || (e > begin && v <= out.entries[e - 1])) {
         detail = "grid: cell list not ascending or out of range";
         return false;
       }
     }
   }
-  if (load_u32(out.offsets + 4 * grid_cells) != out.entry_count) {
+  if (out.offsets[grid_cells] != entry_count) {
     detail = "grid: last offset is not the entry count";
     return false;
   }
@@ -102,9 +106,9 @@ bool read_grid(const SectionBytesView& in, const CellsView& cells, GridView& out
   // entry count leaves room for nothing else. locate() relies on the first half.
   std::uint64_t expected_entries = 0;
   for (std::uint32_t i = 0; i < cells.count; ++i) {
-    const GridRange range = triangle_grid_range(g, triangle_at(cells, i));
+    const GridRange range = triangle_grid_range(g, cells.shapes[i].triangle);
     expected_entries += std::uint64_t{range.x1 - range.x0 + 1} * (range.y1 - range.y0 + 1);
-    if (expected_entries > out.entry_count) break;  // bounds the work on hostile input
+    if (expected_entries > entry_count) break;  // bounds the work on hostile input
     for (std::uint32_t y = range.y0; y <= range.y1; ++y) {
       for (std::uint32_t x = range.x0; x <= range.x1; ++x) {
         if (!list_contains(out, std::size_t{y} * g.nx + x, i)) {
@@ -114,10 +118,27 @@ bool read_grid(const SectionBytesView& in, const CellsView& cells, GridView& out
       }
     }
   }
-  if (expected_entries != out.entry_count) {
+  if (expected_entries != entry_count) {
     detail = "grid: the point-location index does not match the cells";
     return false;
   }
+  return true;
+}
+
+bool build_grid_index(const CellTable& cells, GridIndex& out, const char*& detail) {
+  std::vector<std::array<Point2, 3>> triangles(cells.count);
+  for (std::uint32_t i = 0; i < cells.count; ++i) triangles[i] = cells.shapes[i].triangle;
+  BuiltGrid grid = build_grid(triangles, cells.grid_density);
+  if (grid.entries.size() >= UINT32_MAX) {
+    detail = "cells: the point-location grid would exceed 2^32 entries";
+    return false;
+  }
+  out.geometry = grid.geometry;
+  out.offsets.resize(grid.offsets.size());
+  for (std::size_t c = 0; c < grid.offsets.size(); ++c) {
+    out.offsets[c] = static_cast<std::uint32_t>(grid.offsets[c]);  // <= entries.size()
+  }
+  out.entries = std::move(grid.entries);
   return true;
 }
 

@@ -24,20 +24,34 @@ const SectionInfo* find_section(const ContainerInfo& c, SectionId id) noexcept {
   return nullptr;
 }
 
-Status load_sections(PvsFileData& file, LoadError& error) {
+/// The sections a file of `major` needs, in table order: 1.x stores its grid (id 4), 2.x builds
+/// it at load from the cells.
+struct Layout {
+  const SectionId* ids;
+  int count;
+};
+Layout required_sections(std::uint16_t major) noexcept {
+  static constexpr SectionId kV1[5] = {SectionId::kMetadata, SectionId::kObjects, SectionId::kCells,
+                                       SectionId::kGrid, SectionId::kPvs};
+  static constexpr SectionId kV2[4] = {SectionId::kMetadata, SectionId::kObjects, SectionId::kCells,
+                                       SectionId::kPvs};
+  return major == 1 ? Layout{kV1, 5} : Layout{kV2, 4};
+}
+
+Status load_sections(PvsFileData& file, const LoadOptions& options, LoadError& error) {
   const ContainerInfo& c = file.container;
   // A newer minor version may append fields to known sections; a file of our version may not.
-  const bool extension = c.minor > format::kMinorVersion;
-  constexpr SectionId kRequired[5] = {SectionId::kMetadata, SectionId::kObjects, SectionId::kCells,
-                                      SectionId::kGrid, SectionId::kPvs};
+  const bool extension = c.minor > format::latest_minor(c.major);
+  const Layout layout = required_sections(c.major);
   SectionBytesView views[5];
-  for (int i = 0; i < 5; ++i) {
-    const SectionInfo* s = find_section(c, kRequired[i]);
+  for (int i = 0; i < layout.count; ++i) {
+    const SectionInfo* s = find_section(c, layout.ids[i]);
     if (s == nullptr) {
-      return fail(error, Status::kMissingSection, "required section missing", kRequired[i]);
+      return fail(error, Status::kMissingSection, "required section missing", layout.ids[i]);
     }
     views[i] = {file.data + s->offset, static_cast<std::size_t>(s->length), extension};
   }
+  const SectionBytesView& pvs = views[layout.count - 1];
   const char* detail = "";
   if (!read_metadata(views[0], file.metadata, detail)) {
     return fail(error, Status::kMalformedSection, detail, SectionId::kMetadata);
@@ -45,13 +59,19 @@ Status load_sections(PvsFileData& file, LoadError& error) {
   if (!read_objects(views[1], file.objects, detail)) {
     return fail(error, Status::kMalformedSection, detail, SectionId::kObjects);
   }
-  if (!read_cells(views[2], file.cells, detail)) {
+  if (c.major == 1) {
+    if (!read_cells_v1(views[2], file.cells, detail)) {
+      return fail(error, Status::kMalformedSection, detail, SectionId::kCells);
+    }
+    if (!read_grid(views[3], file.cells, file.grid, detail)) {
+      return fail(error, Status::kMalformedSection, detail, SectionId::kGrid);
+    }
+  } else if (!read_cells_v2(views[2], file.cells, detail) ||
+             !build_grid_index(file.cells, file.grid, detail)) {
     return fail(error, Status::kMalformedSection, detail, SectionId::kCells);
   }
-  if (!read_grid(views[3], file.cells, file.grid, detail)) {
-    return fail(error, Status::kMalformedSection, detail, SectionId::kGrid);
-  }
-  if (!read_pvs(views[4], file.cells.count, file.objects.count, file.pvs, detail)) {
+  PvsExpansion* expansion = options.expand_pvs ? &file.expanded : nullptr;
+  if (!read_pvs(pvs, file.cells.count, file.objects.count, file.pvs, expansion, detail)) {
     return fail(error, Status::kMalformedSection, detail, SectionId::kPvs);
   }
   file.geodetic_frame = GeodeticFrame(file.metadata.frame.geodetic_origin);
@@ -68,7 +88,7 @@ Status load(PvsFileData& file, const LoadOptions& options, LoadError& error) noe
     const Status status =
         read_container(file.data, file.size, options.verify_checksums, file.container, error);
     if (status != Status::kOk) return status;
-    return load_sections(file, error);
+    return load_sections(file, options, error);
   } catch (const std::bad_alloc&) {
     error = {Status::kOutOfMemory, 0, "out of memory while loading"};
     return Status::kOutOfMemory;

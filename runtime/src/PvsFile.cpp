@@ -24,16 +24,12 @@ std::uint32_t locate_in(const detail::PvsFileData& f, double x, double y, double
   const std::size_t grid_cell =
       std::size_t{detail::grid_coordinate(y, g.origin_y, g.size_y, g.ny)} * g.nx +
       detail::grid_coordinate(x, g.origin_x, g.size_x, g.nx);
-  const std::uint32_t begin = detail::load_u32(f.grid.offsets + 4 * grid_cell);
-  const std::uint32_t end = detail::load_u32(f.grid.offsets + 4 * (grid_cell + 1));
-  for (std::uint32_t e = begin; e < end; ++e) {
-    const std::uint32_t cell = detail::load_u32(f.grid.entries + 4 * std::size_t{e});
-    if (check_z) {
-      double z_min, z_max;
-      detail::z_range_at(f.cells, cell, z_min, z_max);
-      if (!(z >= z_min && z <= z_max)) continue;
-    }
-    if (triangle_contains(detail::triangle_at(f.cells, cell), x, y)) return cell;
+  const std::uint32_t* e = f.grid.entries.data() + f.grid.offsets[grid_cell];
+  const std::uint32_t* const end = f.grid.entries.data() + f.grid.offsets[grid_cell + 1];
+  for (; e != end; ++e) {
+    const detail::CellShape& shape = f.cells.shapes[*e];
+    if (check_z && !(z >= shape.z_min && z <= shape.z_max)) continue;
+    if (triangle_contains(shape.triangle, x, y)) return *e;
   }
   return kNoCell;
 }
@@ -201,17 +197,38 @@ std::size_t PvsFile::decode_buffer_size() const noexcept {
   return data_ ? data_->decode_buffer_size : 0;
 }
 
+bool PvsFile::is_expanded() const noexcept {
+  return data_ && !data_->expanded.empty();
+}
+
+Status PvsFile::pvs_span(std::uint32_t cell, IndexSpan& out) const noexcept {
+  if (cell >= cell_count()) return Status::kOutOfRange;
+  if (!is_expanded()) return Status::kNotExpanded;
+  const detail::PvsExpansion& x = data_->expanded;
+  out = {x.ids.data() + x.offsets[cell],
+         static_cast<std::size_t>(x.offsets[cell + 1] - x.offsets[cell])};
+  return Status::kOk;
+}
+
 Status PvsFile::decode_pvs(std::uint32_t cell, std::uint32_t* buffer, std::size_t capacity,
                            std::size_t& count) const noexcept {
   if (cell >= cell_count()) return Status::kOutOfRange;
   if (buffer == nullptr) return Status::kInvalidArgument;
   if (capacity < data_->decode_buffer_size) return Status::kBufferTooSmall;
+  if (IndexSpan span; pvs_span(cell, span) == Status::kOk) {
+    std::copy(span.begin(), span.end(), buffer);
+    count = span.size;
+    return Status::kOk;
+  }
   const std::size_t half = std::max<std::size_t>(data_->pvs.max_pvs_size, 1);
   return detail::decode_cell(data_->pvs.section, cell, buffer, half, count);
 }
 
 bool PvsFile::is_visible(std::uint32_t cell, std::uint32_t object) const noexcept {
   if (cell >= cell_count() || object >= object_count()) return false;
+  if (IndexSpan span; pvs_span(cell, span) == Status::kOk) {
+    return std::binary_search(span.begin(), span.end(), object);
+  }
   return detail::cell_contains(data_->pvs.section, cell, object);
 }
 
@@ -243,14 +260,26 @@ void PvsDecoder::clear() noexcept {
   result_ = buffer_.get();
   size_ = 0;
   entered_ = left_ = IndexSpan{};
+  decoded_cell_ = kNoCell;
 }
 
 Status PvsDecoder::decode(std::uint32_t cell) noexcept {
+  // A camera stays in its cell for many frames: the same cell again costs nothing.
+  if (cell == decoded_cell_ && cell != kNoCell) return Status::kOk;
   clear();
+  if (IndexSpan span; file_->pvs_span(cell, span) == Status::kOk) {
+    result_ = span.data;  // expanded file: no copy
+    size_ = span.size;
+    decoded_cell_ = cell;
+    return Status::kOk;
+  }
   if (!buffer_) return Status::kOutOfMemory;
   std::size_t count = 0;
   const Status status = file_->decode_pvs(cell, buffer_.get(), capacity_, count);
-  if (status == Status::kOk) size_ = count;
+  if (status == Status::kOk) {
+    size_ = count;
+    decoded_cell_ = cell;
+  }
   return status;
 }
 

@@ -19,9 +19,10 @@ struct PvsFileData {
   ContainerInfo container;
   MetadataView metadata;
   ObjectsView objects;
-  CellsView cells;
-  GridView grid;
+  CellTable cells;
+  GridIndex grid;
   PvsView pvs;
+  PvsExpansion expanded;  ///< empty unless LoadOptions::expand_pvs
   std::size_t decode_buffer_size = 0;
   GeodeticFrame geodetic_frame{GeodeticOrigin{}};  ///< from the metadata, for geographic files
 };

@@ -135,7 +135,7 @@ std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
 }
 
 bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_t object_count,
-              PvsView& out, const char*& detail) {
+              PvsView& out, PvsExpansion* expansion, const char*& detail) {
   ByteReader r(in.data, in.size);
   std::uint32_t count, declared_chain;
   std::uint64_t offsets_size;
@@ -180,6 +180,8 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
   // the query functions can only meet data that decodes cleanly.
   const std::size_t half = std::max<std::size_t>(out.max_pvs_size, 1);
   std::unique_ptr<std::uint32_t[]> scratch(new std::uint32_t[out.max_chain >= 2 ? 2 * half : half]);
+  // No reserve from the headers' counts: they are only trusted once decoded.
+  if (expansion != nullptr) expansion->offsets.assign(1, 0);
   for (std::uint32_t cell = 0; cell < count; ++cell) {
     std::size_t n = 0;
     if (decode_cell(s, cell, scratch.get(), half, n) != Status::kOk) {
@@ -191,6 +193,10 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
         detail = "pvs: decoded list not ascending or object index out of range";
         return false;
       }
+    }
+    if (expansion != nullptr) {
+      expansion->ids.insert(expansion->ids.end(), scratch.get(), scratch.get() + n);
+      expansion->offsets.push_back(expansion->ids.size());
     }
   }
   return true;

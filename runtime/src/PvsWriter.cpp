@@ -98,23 +98,33 @@ std::string validate(const PvsBake& bake) {
 
 std::vector<std::byte> encode(const PvsBake& bake, const EncodeOptions& options) {
   if (const std::string problem = validate(bake); !problem.empty()) throw PvsWriteError(problem);
-  std::vector<std::array<Point2, 3>> triangles;
-  triangles.reserve(bake.cells.size());
-  for (const CellRecord& c : bake.cells) triangles.push_back(c.triangle);
+  if (options.format_major < format::kOldestMajorVersion ||
+      options.format_major > format::kMajorVersion) {
+    throw PvsWriteError("format_major " + std::to_string(options.format_major) +
+                        ": this library writes versions 1 and 2");
+  }
   using format::SectionId;
   std::vector<detail::SectionBytes> sections;
   sections.emplace_back(static_cast<std::uint32_t>(SectionId::kMetadata),
                         detail::write_metadata(bake.meta));
   sections.emplace_back(static_cast<std::uint32_t>(SectionId::kObjects),
                         detail::write_objects(bake.objects, options.bbox_float32));
-  sections.emplace_back(static_cast<std::uint32_t>(SectionId::kCells),
-                        detail::write_cells(bake.cells));
-  sections.emplace_back(
-      static_cast<std::uint32_t>(SectionId::kGrid),
-      detail::write_grid(detail::build_grid(triangles, options.grid_cells_per_cell)));
+  if (options.format_major == 1) {
+    std::vector<std::array<Point2, 3>> triangles;
+    triangles.reserve(bake.cells.size());
+    for (const CellRecord& c : bake.cells) triangles.push_back(c.triangle);
+    sections.emplace_back(static_cast<std::uint32_t>(SectionId::kCells),
+                          detail::write_cells_v1(bake.cells));
+    sections.emplace_back(
+        static_cast<std::uint32_t>(SectionId::kGrid),
+        detail::write_grid(detail::build_grid(triangles, options.grid_cells_per_cell)));
+  } else {
+    sections.emplace_back(static_cast<std::uint32_t>(SectionId::kCells),
+                          detail::write_cells_v2(bake.cells, options));
+  }
   sections.emplace_back(static_cast<std::uint32_t>(SectionId::kPvs),
                         detail::write_pvs(bake.cells, options));
-  return detail::write_container(sections);
+  return detail::write_container(sections, options.format_major);
 }
 
 }  // namespace urbanpvs::runtime

@@ -51,29 +51,46 @@ bool read_objects(const SectionBytesView& in, ObjectsView& out, const char*& det
 ObjectInfo object_at(const ObjectsView& view, std::uint32_t index) noexcept;
 
 // --- cells -------------------------------------------------------------------------------------
-struct CellsView {
-  const unsigned char* records = nullptr;
-  std::uint32_t count = 0;
+/// The cells of a validated file, decoded whatever the version: locate() tests a cell's triangle
+/// and z range from one 64-byte record, and cell() adds the neighbours.
+struct CellShape {
+  std::array<Point2, 3> triangle;
+  double z_min;
+  double z_max;
 };
-std::vector<unsigned char> write_cells(const std::vector<CellRecord>& cells);
-bool read_cells(const SectionBytesView& in, CellsView& out, const char*& detail);
-/// Triangle of cell `index` (< view.count): read straight from the record (locate's hot path).
-std::array<Point2, 3> triangle_at(const CellsView& view, std::uint32_t index) noexcept;
-CellGeometry cell_at(const CellsView& view, std::uint32_t index) noexcept;
-/// z range of cell `index`.
-void z_range_at(const CellsView& view, std::uint32_t index, double& z_min, double& z_max) noexcept;
+struct CellTable {
+  std::vector<CellShape> shapes;
+  std::vector<std::array<std::uint32_t, 3>> neighbours;
+  std::uint32_t count = 0;
+  /// Grid cells per view cell of the point-location grid (stored in 2.x, built at load).
+  double grid_density = 1;
+};
+/// Version 1.x: fixed 76-byte records (FORMAT.md, "cells, version 1").
+std::vector<unsigned char> write_cells_v1(const std::vector<CellRecord>& cells);
+bool read_cells_v1(const SectionBytesView& in, CellTable& out, const char*& detail);
+/// Version 2.x: an indexed mesh of quantized vertices (FORMAT.md, "cells, version 2").
+std::vector<unsigned char> write_cells_v2(const std::vector<CellRecord>& cells,
+                                          const EncodeOptions& options);
+bool read_cells_v2(const SectionBytesView& in, CellTable& out, const char*& detail);
+/// The cells as a 2.x reader sees them: quantized and with derived neighbours. The writer plans
+/// the PVS encoding over these neighbours, so writer and reader agree on the mesh.
+CellGeometry cell_at(const CellTable& table, std::uint32_t index) noexcept;
 
 // --- grid --------------------------------------------------------------------------------------
-struct GridView {
+/// The point-location grid, owned: read and checked from a 1.x file's grid section, or built at
+/// load from a 2.x file's cells with the same function the 1.x writer used.
+struct GridIndex {
   GridGeometry geometry;
-  const unsigned char* offsets = nullptr;  ///< nx * ny + 1 u32
-  const unsigned char* entries = nullptr;
-  std::uint32_t entry_count = 0;
+  std::vector<std::uint32_t> offsets;  ///< nx * ny + 1
+  std::vector<std::uint32_t> entries;
 };
 std::vector<unsigned char> write_grid(const BuiltGrid& grid);
 /// Also checks the grid is exactly the one build_grid's indexing gives for `cells`.
-bool read_grid(const SectionBytesView& in, const CellsView& cells, GridView& out,
+bool read_grid(const SectionBytesView& in, const CellTable& cells, GridIndex& out,
                const char*& detail);
+/// Builds the grid of a 2.x file from its cells; false (with `detail`) when it does not fit the
+/// 32-bit entries.
+bool build_grid_index(const CellTable& cells, GridIndex& out, const char*& detail);
 
 // --- pvs ---------------------------------------------------------------------------------------
 struct PvsView {
@@ -84,8 +101,16 @@ struct PvsView {
 };
 std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
                                      const EncodeOptions& options);
-/// Decodes every cell once: sorted, in range, counts consistent, chains within bounds.
+/// Every cell's PVS decoded into one array (LoadOptions::expand_pvs): cell c is
+/// `ids[offsets[c], offsets[c + 1])`.
+struct PvsExpansion {
+  std::vector<std::uint32_t> ids;
+  std::vector<std::uint64_t> offsets;
+  bool empty() const noexcept { return offsets.empty(); }
+};
+/// Decodes every cell once: sorted, in range, counts consistent, chains within bounds. When
+/// `expansion` is given, keeps the decoded lists there.
 bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_t object_count,
-              PvsView& out, const char*& detail);
+              PvsView& out, PvsExpansion* expansion, const char*& detail);
 
 }  // namespace urbanpvs::runtime::detail

@@ -41,6 +41,8 @@ const char* status_message(Status status) noexcept {
       return "the file's input was not geographic";
     case Status::kInvalidArgument:
       return "invalid argument";
+    case Status::kNotExpanded:
+      return "the file was not opened with its PVSs expanded";
   }
   return "unknown status";
 }

@@ -161,7 +161,7 @@ TEST(Inspect, ExitCodes) {
   auto bad_magic = golden;
   bad_magic[0] = std::byte{'X'};
   auto newer = golden;
-  urbanpvs::test::put_u16(newer, 8, 2);
+  urbanpvs::test::put_u16(newer, 8, 3);
   auto corrupt = golden;
   corrupt[corrupt.size() - 3] ^= std::byte{1};
   auto truncated = golden;

@@ -25,21 +25,49 @@ std::uint32_t brute_force(const rt::PvsBake& bake, double x, double y, double z,
   return rt::kNoCell;
 }
 
+/// `bake` with the cells as the file stores them: 2.x rounds vertices to millimetres and z ranges
+/// outwards, and locate() answers for the stored cells (FORMAT.md).
+rt::PvsBake stored(rt::PvsBake bake, const rt::PvsFile& file) {
+  for (std::uint32_t c = 0; c < bake.cells.size(); ++c) {
+    rt::CellGeometry g;
+    EXPECT_EQ(file.cell(c, g), rt::Status::kOk);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(std::fabs(g.triangle[k].x - bake.cells[c].triangle[k].x), 0.0005);
+      EXPECT_LE(std::fabs(g.triangle[k].y - bake.cells[c].triangle[k].y), 0.0005);
+    }
+    EXPECT_LE(g.z_min, bake.cells[c].z_min);
+    EXPECT_GE(g.z_max, bake.cells[c].z_max);
+    bake.cells[c].triangle = g.triangle;
+    bake.cells[c].z_min = g.z_min;
+    bake.cells[c].z_max = g.z_max;
+  }
+  return bake;
+}
+
 rt::PvsFile open(const std::vector<std::byte>& bytes) {
   rt::PvsFile file;
   EXPECT_EQ(rt::PvsFile::open(bytes.data(), bytes.size(), file), rt::Status::kOk);
   return file;
 }
 
-TEST(Locate, MeshAgreesWithBruteForceIncludingEdgesAndVertices) {
+class Locate : public ::testing::TestWithParam<std::uint16_t> {
+ protected:
+  rt::EncodeOptions options() const {
+    rt::EncodeOptions e;
+    e.format_major = GetParam();
+    return e;
+  }
+};
+
+TEST_P(Locate, MeshAgreesWithBruteForceIncludingEdgesAndVertices) {
   urbanpvs::test::RandomBakeOptions o;
   o.nx = 24;
   o.ny = 17;
   o.square = 7.5;
   o.objects = 10;
-  const rt::PvsBake bake = urbanpvs::test::random_mesh_bake(2024, o);
-  const auto bytes = rt::encode(bake);
+  const auto bytes = rt::encode(urbanpvs::test::random_mesh_bake(2024, o), options());
   const rt::PvsFile file = open(bytes);
+  const rt::PvsBake bake = stored(urbanpvs::test::random_mesh_bake(2024, o), file);
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(0, 1), x(-5, o.nx * o.square + 5),
       y(-5, o.ny * o.square + 5), z(-2, 6), t(0.01, 0.99);
@@ -82,14 +110,15 @@ TEST(Locate, MeshAgreesWithBruteForceIncludingEdgesAndVertices) {
   EXPECT_GT(inside, 40000u);
 }
 
-TEST(Locate, OverlappingSoupReturnsLowestIndex) {
-  const rt::PvsBake bake = urbanpvs::test::random_soup_bake(77, 400, 200);
-  rt::EncodeOptions fine, coarse;
+TEST_P(Locate, OverlappingSoupReturnsLowestIndex) {
+  const rt::PvsBake soup = urbanpvs::test::random_soup_bake(77, 400, 200);
+  rt::EncodeOptions fine = options(), coarse = options();
   fine.grid_cells_per_cell = 4;
   coarse.grid_cells_per_cell = 0.05;
-  for (const auto& options : {fine, coarse}) {
-    const auto bytes = rt::encode(bake, options);
+  for (const auto& e : {fine, coarse}) {
+    const auto bytes = rt::encode(soup, e);
     const rt::PvsFile file = open(bytes);
+    const rt::PvsBake bake = stored(soup, file);
     std::mt19937_64 rng(2);
     std::uniform_real_distribution<double> p(-30, 230), z(-6, 10);
     for (int i = 0; i < 20000; ++i) {
@@ -99,9 +128,9 @@ TEST(Locate, OverlappingSoupReturnsLowestIndex) {
   }
 }
 
-TEST(Locate, NonFiniteAndFarPointsAreOutside) {
+TEST_P(Locate, NonFiniteAndFarPointsAreOutside) {
   const rt::PvsBake bake = urbanpvs::test::random_mesh_bake(3, {});
-  const auto bytes = rt::encode(bake);
+  const auto bytes = rt::encode(bake, options());
   const rt::PvsFile file = open(bytes);
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -118,5 +147,9 @@ TEST(Locate, NonFiniteAndFarPointsAreOutside) {
   EXPECT_NE(file.locate_xy(cx, cy), rt::kNoCell);
   EXPECT_EQ(file.locate_xy(cx, nan), rt::kNoCell);
 }
+
+INSTANTIATE_TEST_SUITE_P(EveryVersion, Locate,
+                         ::testing::Values(std::uint16_t{1}, std::uint16_t{2}),
+                         [](const auto& p) { return "v" + std::to_string(p.param); });
 
 }  // namespace

@@ -95,7 +95,7 @@ TEST(Rejection, BadMagic) {
 }
 
 TEST(Rejection, OtherMajorVersions) {
-  for (std::uint16_t major : {0, 2, 0xFFFF}) {
+  for (std::uint16_t major : {0, 3, 0xFFFF}) {
     Bytes b = golden();
     put_u16(b, 8, major);
     EXPECT_EQ(load(b), Status::kUnsupportedVersion);  // refused before the checksum is read

@@ -42,10 +42,46 @@ void expect_bbox(const rt::Bbox& got, const rt::Bbox& want, bool float32) {
   }
 }
 
+double cross(const rt::Point2& a, const rt::Point2& b, const rt::Point2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+/// FORMAT.md's neighbour rule of 2.x, brute force over the stored cells: across edge k of c is
+/// the lowest-index other cell with both end points of the edge among its corners and its third
+/// corner strictly on the other side.
+std::vector<std::array<std::uint32_t, 3>> neighbours_by_rule(const rt::PvsFile& file) {
+  std::vector<rt::CellGeometry> g(file.cell_count());
+  for (std::uint32_t c = 0; c < file.cell_count(); ++c) file.cell(c, g[c]);
+  const auto same = [](const rt::Point2& p, const rt::Point2& q) {
+    return p.x == q.x && p.y == q.y;
+  };
+  std::vector<std::array<std::uint32_t, 3>> out(g.size(), {rt::kNoCell, rt::kNoCell, rt::kNoCell});
+  for (std::uint32_t c = 0; c < g.size(); ++c) {
+    for (int k = 0; k < 3; ++k) {
+      const rt::Point2 a = g[c].triangle[k], b = g[c].triangle[(k + 1) % 3];
+      const double side = cross(a, b, g[c].triangle[(k + 2) % 3]);
+      if (same(a, b) || side == 0) continue;
+      for (std::uint32_t d = 0; d < g.size() && out[c][k] == rt::kNoCell; ++d) {
+        if (d == c) continue;
+        int has_a = -1, has_b = -1;
+        for (int j = 0; j < 3; ++j) {
+          if (same(g[d].triangle[j], a)) has_a = j;
+          if (same(g[d].triangle[j], b)) has_b = j;
+        }
+        if (has_a < 0 || has_b < 0 || has_a == has_b) continue;
+        const double other = cross(a, b, g[d].triangle[3 - has_a - has_b]);
+        if (other * side < 0) out[c][k] = d;
+      }
+    }
+  }
+  return out;
+}
+
 void expect_same(const rt::PvsBake& bake, const rt::PvsFile& file, bool float32) {
   ASSERT_TRUE(file.is_open());
-  EXPECT_EQ(file.major_version(), rt::format::kMajorVersion);
-  EXPECT_EQ(file.minor_version(), rt::format::kMinorVersion);
+  const bool v1 = file.major_version() == 1;
+  EXPECT_EQ(file.minor_version(), 0);
+  const auto rule = v1 ? std::vector<std::array<std::uint32_t, 3>>{} : neighbours_by_rule(file);
   const rt::FrameInfo f = file.frame();
   EXPECT_EQ(f.crs, bake.meta.frame.crs);
   EXPECT_EQ(f.geographic, bake.meta.frame.geographic);
@@ -82,13 +118,25 @@ void expect_same(const rt::PvsBake& bake, const rt::PvsFile& file, bool float32)
     const rt::CellRecord& want = bake.cells[c];
     rt::CellGeometry g;
     ASSERT_EQ(file.cell(c, g), rt::Status::kOk);
-    for (int k = 0; k < 3; ++k) {
-      EXPECT_EQ(g.triangle[k].x, want.triangle[k].x);
-      EXPECT_EQ(g.triangle[k].y, want.triangle[k].y);
+    if (v1) {  // float64, bit for bit
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(g.triangle[k].x, want.triangle[k].x);
+        EXPECT_EQ(g.triangle[k].y, want.triangle[k].y);
+      }
+      EXPECT_EQ(g.z_min, want.z_min);
+      EXPECT_EQ(g.z_max, want.z_max);
+      EXPECT_EQ(g.neighbours, want.neighbours);
+    } else {  // whole millimetres, z rounded outwards; neighbours by the rule
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(g.triangle[k].x, std::nearbyint(want.triangle[k].x / 0.001) * 0.001);
+        EXPECT_EQ(g.triangle[k].y, std::nearbyint(want.triangle[k].y / 0.001) * 0.001);
+      }
+      EXPECT_LE(g.z_min, want.z_min);
+      EXPECT_GT(g.z_min, want.z_min - 0.001);
+      EXPECT_GE(g.z_max, want.z_max);
+      EXPECT_LT(g.z_max, want.z_max + 0.001);
+      EXPECT_EQ(g.neighbours, rule[c]) << "cell " << c;
     }
-    EXPECT_EQ(g.z_min, want.z_min);
-    EXPECT_EQ(g.z_max, want.z_max);
-    EXPECT_EQ(g.neighbours, want.neighbours);
     std::size_t n = 0;
     ASSERT_EQ(file.decode_pvs(c, buffer.data(), buffer.size(), n), rt::Status::kOk);
     ASSERT_EQ(std::vector<std::uint32_t>(buffer.begin(), buffer.begin() + n), want.pvs)
@@ -147,7 +195,11 @@ std::vector<Variant> variants() {
 }
 
 TEST(RoundTrip, RandomBakesManySeedsAndOptions) {
-  const std::vector<Variant> all = variants();
+  std::vector<Variant> all = variants();
+  for (std::size_t v = 0, n = all.size(); v < n; ++v) {  // every variant in both versions
+    all.push_back(all[v]);
+    all.back().encode.format_major = 1;
+  }
   for (std::size_t v = 0; v < all.size(); ++v) {
     for (std::uint64_t seed = 0; seed < 12; ++seed) {
       SCOPED_TRACE("variant " + std::to_string(v) + " seed " + std::to_string(seed));
@@ -187,6 +239,45 @@ TEST(RoundTrip, DiffChainsStayWithinTheBound) {
               (longest >= 2 ? 2u : 1u) * std::max<std::size_t>(file.max_pvs_size(), 1));
     expect_same(bake, file, true);
   }
+}
+
+TEST(RoundTrip, Version2DerivesTheNeighboursOfAMesh) {
+  RandomBakeOptions o;
+  o.nx = 9;
+  o.ny = 7;
+  const rt::PvsBake bake = random_mesh_bake(12, o);
+  const rt::PvsFile file = open_ok(rt::encode(bake));
+  ASSERT_EQ(file.major_version(), 2);
+  std::size_t inner = 0;
+  for (std::uint32_t c = 0; c < file.cell_count(); ++c) {
+    rt::CellGeometry g;
+    ASSERT_EQ(file.cell(c, g), rt::Status::kOk);
+    EXPECT_EQ(g.neighbours, bake.cells[c].neighbours) << "cell " << c;
+    for (std::uint32_t n : g.neighbours) inner += n != rt::kNoCell;
+  }
+  EXPECT_GT(inner, file.cell_count());  // most edges are shared
+}
+
+TEST(RoundTrip, StackedCellsAreNotNeighboursOfEachOther) {
+  rt::PvsBake bake;
+  bake.objects.resize(2, {"o", {0, 0, 0, 1, 1, 1}});
+  rt::CellRecord cell;
+  cell.triangle = {rt::Point2{0, 0}, {4, 0}, {0, 4}};
+  cell.z_max = 2;
+  bake.cells.push_back(cell);
+  cell.z_min = 3;  // the same triangle one level up
+  cell.z_max = 5;
+  bake.cells.push_back(cell);
+  cell.triangle = {rt::Point2{4, 0}, {4, 4}, {0, 4}};  // across the diagonal
+  bake.cells.push_back(cell);
+  const rt::PvsFile file = open_ok(rt::encode(bake));
+  rt::CellGeometry g;
+  ASSERT_EQ(file.cell(0, g), rt::Status::kOk);
+  EXPECT_EQ(g.neighbours, (std::array<std::uint32_t, 3>{rt::kNoCell, 2, rt::kNoCell}));
+  ASSERT_EQ(file.cell(2, g), rt::Status::kOk);
+  EXPECT_EQ(g.neighbours, (std::array<std::uint32_t, 3>{rt::kNoCell, rt::kNoCell, 0}));
+  EXPECT_EQ(file.locate(1, 1, 4), 1u);
+  EXPECT_EQ(file.locate(1, 1, 1), 0u);
 }
 
 TEST(RoundTrip, EmptyBake) {

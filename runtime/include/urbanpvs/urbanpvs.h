@@ -45,8 +45,12 @@ typedef enum urbanpvs_status {
   URBANPVS_OUT_OF_MEMORY = 13,
   URBANPVS_IO_ERROR = 14,
   URBANPVS_NOT_GEOGRAPHIC = 15,
-  URBANPVS_INVALID_ARGUMENT = 16
+  URBANPVS_INVALID_ARGUMENT = 16,
+  URBANPVS_NOT_EXPANDED = 17
 } urbanpvs_status;
+
+/* Flags of urbanpvs_open_file_flags. */
+#define URBANPVS_OPEN_EXPAND_PVS 1u /* keep every decoded PVS in memory: see urbanpvs_pvs_span */
 
 /* locate() result for points outside every cell; absent neighbour. */
 #define URBANPVS_NO_CELL 0xFFFFFFFFu
@@ -62,6 +66,10 @@ urbanpvs_status urbanpvs_open_memory(const void* data, size_t size, urbanpvs_fil
 
 /* Reads the file at `path` (NUL-terminated) and opens it. */
 urbanpvs_status urbanpvs_open_file(const char* path, urbanpvs_file** out);
+
+/* As urbanpvs_open_file, with URBANPVS_OPEN_* flags (0 is urbanpvs_open_file). Unknown flags:
+ * URBANPVS_INVALID_ARGUMENT. */
+urbanpvs_status urbanpvs_open_file_flags(const char* path, uint32_t flags, urbanpvs_file** out);
 
 /* Releases a handle; NULL is allowed. */
 void urbanpvs_close(urbanpvs_file* file);
@@ -96,6 +104,11 @@ urbanpvs_status urbanpvs_pvs(const urbanpvs_file* file, uint32_t cell, uint32_t*
 
 /* 1 when `object` is visible from `cell`, 0 otherwise (also for indices out of range). */
 int urbanpvs_is_visible(const urbanpvs_file* file, uint32_t cell, uint32_t object);
+
+/* The PVS of `cell` in place (ascending, valid until urbanpvs_close), for a file opened with
+ * URBANPVS_OPEN_EXPAND_PVS: O(1), no copy. URBANPVS_NOT_EXPANDED otherwise. */
+urbanpvs_status urbanpvs_pvs_span(const urbanpvs_file* file, uint32_t cell, const uint32_t** data,
+                                  size_t* count);
 
 /* Source id of an object (pointer into the file, not NUL-terminated) and its bounding box
  * (min x, min y, min z, max x, max y, max z; local frame). Either output may be NULL. */

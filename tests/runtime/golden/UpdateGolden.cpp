@@ -23,6 +23,10 @@ int main(int argc, char** argv) {
     const auto golden_bytes =
         rt::encode(urbanpvs::test::golden_bake(), urbanpvs::test::golden_options());
     rt::write_file_atomic(golden + "/v1_0.pvs", golden_bytes);
+    const auto golden_v2 =
+        rt::encode(urbanpvs::test::golden_bake(), urbanpvs::test::golden_options(2));
+    rt::write_file_atomic(golden + "/v2_0.pvs", golden_v2);
+    rt::write_file_atomic(corpus + "/golden_v2.pvs", golden_v2);
     // Seeds: small files covering every section feature, so mutations start from valid input.
     rt::write_file_atomic(corpus + "/golden.pvs", golden_bytes);
     rt::write_file_atomic(corpus + "/empty.pvs", rt::encode(rt::PvsBake{}));
@@ -46,6 +50,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;
   }
-  std::printf("wrote %s/v1_0.pvs and the seeds in %s\n", golden.c_str(), corpus.c_str());
+  std::printf("wrote %s/v1_0.pvs, v2_0.pvs and the seeds in %s\n", golden.c_str(), corpus.c_str());
   return 0;
 }

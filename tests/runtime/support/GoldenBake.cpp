@@ -7,8 +7,9 @@ namespace urbanpvs::test {
 
 using runtime::kNoCell;
 
-runtime::EncodeOptions golden_options() {
+runtime::EncodeOptions golden_options(std::uint16_t major) {
   runtime::EncodeOptions options;
+  options.format_major = major;
   options.bbox_float32 = true;
   options.max_diff_chain = 1;
   options.diff_threshold = 1.0;

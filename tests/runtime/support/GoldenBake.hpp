@@ -15,6 +15,7 @@ runtime::PvsBake golden_bake();
 
 /// The options the golden file was encoded with. Explicit, so that tuning the writer's default
 /// heuristics does not change the golden bytes (diff_threshold 1: cells 2 and 4 are diffs).
-runtime::EncodeOptions golden_options();
+/// The options of the golden file of format `major` (tests/runtime/golden/v1_0.pvs, v2_0.pvs).
+runtime::EncodeOptions golden_options(std::uint16_t major = 1);
 
 }  // namespace urbanpvs::test

@@ -14,12 +14,22 @@ namespace urbanpvs::runtime::format {
 /// like PNG's signature.
 inline constexpr unsigned char kMagic[8] = {0x89, 'U', 'P', 'V', 'S', '\r', '\n', 0x1a};
 
-/// The version this library writes and reads. A reader loads every file with the same major
-/// version unless it sets required-feature bits the reader does not know (kKnownRequiredFeatures).
-inline constexpr std::uint16_t kMajorVersion = 1;
+/// The version this library writes by default. It reads every major version from
+/// kOldestMajorVersion to kMajorVersion, each with any minor version, unless the file sets
+/// required-feature bits the reader does not know (kKnownRequiredFeatures).
+/// 1.0: cells as float64 records, a stored point-location grid. 2.0: cells as an indexed mesh of
+/// quantized vertices, the grid built at load.
+inline constexpr std::uint16_t kMajorVersion = 2;
 inline constexpr std::uint16_t kMinorVersion = 0;
+inline constexpr std::uint16_t kOldestMajorVersion = 1;
 
-/// Required-feature bits understood by this reader. Version 1.0 defines none. A later minor
+/// The newest minor version this reader knows of `major` (1.0 and 2.0 so far). Bytes appended
+/// to known structures are tolerated only in files of a newer minor version.
+constexpr std::uint16_t latest_minor(std::uint16_t major) noexcept {
+  return major == 1 ? 0 : kMinorVersion;
+}
+
+/// Required-feature bits understood by this reader. Versions 1.0 and 2.0 define none. A later minor
 /// version that changes the meaning of existing data (so that a 1.0 reader would answer wrongly)
 /// must set a new bit here; one that only appends optional data must not.
 inline constexpr std::uint32_t kKnownRequiredFeatures = 0;
@@ -37,7 +47,7 @@ enum class SectionId : std::uint32_t {
   kMetadata = 1,
   kObjects = 2,
   kCells = 3,
-  kGrid = 4,
+  kGrid = 4,  ///< 1.x only; 2.x builds the grid from the cells
   kPvs = 5,
 };
 
@@ -59,7 +69,7 @@ inline constexpr std::uint32_t kMaxDiffChain = 4;
 inline constexpr std::uint8_t kBboxFloat32 = 4;
 inline constexpr std::uint8_t kBboxFloat64 = 8;
 
-/// Fixed record sizes.
+/// Fixed record size of the 1.x cells section.
 inline constexpr std::uint32_t kCellRecordSize = 76;  // 8 f64 + 3 u32
 
 }  // namespace urbanpvs::runtime::format

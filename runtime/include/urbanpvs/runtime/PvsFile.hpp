@@ -46,6 +46,11 @@ struct LoadOptions {
   /// structural validation behind the checksums (which always runs) or for files the caller
   /// has already verified; a corrupted but structurally valid file then loads with wrong data.
   bool verify_checksums = true;
+  /// Keep every cell's decoded PVS (the loader decodes each one to validate it anyway):
+  /// pvs_span() then returns it in place, and decode() and is_visible() read it without
+  /// decoding. Costs 4 bytes per PVS entry (total_pvs_entries()), what plain lists take: the
+  /// file stays small on disk and on the wire, and memory buys the fastest queries.
+  bool expand_pvs = false;
 };
 
 /// An object (building) as stored: its source id and its bounding box in the local frame.
@@ -176,8 +181,15 @@ class PvsFile {
   Status decode_pvs(std::uint32_t cell, std::uint32_t* buffer, std::size_t capacity,
                     std::size_t& count) const noexcept;
   /// Whether `object` is in the PVS of `cell` (false when either is out of range). No
-  /// allocation and no decode buffer: scans the encoded lists with early exit.
+  /// allocation and no decode buffer: scans the encoded lists with early exit, or a binary
+  /// search of the expanded list (O(log |PVS|)) when the file was opened with expand_pvs.
   bool is_visible(std::uint32_t cell, std::uint32_t object) const noexcept;
+  /// Whether the file was opened with LoadOptions::expand_pvs.
+  bool is_expanded() const noexcept;
+  /// The decoded PVS of `cell` in place (ascending, valid while the file is open), when the
+  /// file was opened with expand_pvs: O(1), no copy. kNotExpanded otherwise, kOutOfRange when
+  /// cell >= cell_count().
+  Status pvs_span(std::uint32_t cell, IndexSpan& out) const noexcept;
   /// How the PVS of `cell` is stored; kOutOfRange when cell >= cell_count().
   Status pvs_encoding(std::uint32_t cell, PvsEncodingInfo& out) const noexcept;
 
@@ -205,7 +217,9 @@ class PvsDecoder {
   PvsDecoder(const PvsDecoder&) = delete;
   PvsDecoder& operator=(const PvsDecoder&) = delete;
 
-  /// Decodes the PVS of `cell`; the result is in view() until the next call.
+  /// Decodes the PVS of `cell`; the result is in view() until the next call. Asking again for
+  /// the cell decoded last returns at once; on an expanded file view() points into the file's
+  /// lists (no copy).
   Status decode(std::uint32_t cell) noexcept;
   /// The objects visible from any of `cells[0, n)`, ascending and each once, in view() until
   /// the next call. n == 0 gives an empty set. kOutOfRange when a cell is out of range,
@@ -242,6 +256,7 @@ class PvsDecoder {
   std::size_t sets_capacity_ = 0;
   std::unique_ptr<std::uint32_t[]> marks_;
   IndexSpan entered_{}, left_{};
+  std::uint32_t decoded_cell_ = kNoCell;  ///< the cell view() holds after decode(), else none
 };
 
 }  // namespace urbanpvs::runtime

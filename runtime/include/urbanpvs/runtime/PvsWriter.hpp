@@ -71,8 +71,12 @@ struct EncodeOptions {
   /// full encoding. Lower values make more full "key" cells, so diffs stay between close
   /// neighbours: smaller AND faster to apply, down to about 0.25 (README, measurements).
   double diff_threshold = 0.3;
-  /// Point-location grid resolution: about this many grid cells per view cell.
+  /// Point-location grid resolution: about this many grid cells per view cell (in (0, 64]).
   double grid_cells_per_cell = 1.0;
+  /// Major format version to write: 2 (the default: cells as an indexed mesh of millimetre
+  /// vertices, the grid built at load) or 1 (float64 cell records and a stored grid, for
+  /// engines that still ship a 1.x reader; this library reads both).
+  std::uint16_t format_major = 2;
 };
 
 /// Thrown by the writer; what() names the offending element and the reason, or the path.

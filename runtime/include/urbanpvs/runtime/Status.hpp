@@ -43,6 +43,8 @@ enum class Status : int {
   kNotGeographic = 15,
   /// A null pointer or otherwise invalid argument (C API).
   kInvalidArgument = 16,
+  /// pvs_span() on a file opened without LoadOptions::expand_pvs.
+  kNotExpanded = 17,
 };
 
 /// A short, static, human-readable English description of `status` (never null).
