@@ -40,10 +40,12 @@ rt::PvsBake bake_of(const rt::PvsFile& file) {
     file.property(i, k, v);
     bake.meta.properties.emplace_back(std::string(k), std::string(v));
   }
+  // Without the payloads (a 2.1 addition that 1.0 cannot hold): every row compares the same
+  // cells and PVSs.
   for (std::uint32_t i = 0; i < file.object_count(); ++i) {
     rt::ObjectInfo o;
     file.object(i, o);
-    bake.objects.push_back({std::string(o.source_id), o.bbox});
+    bake.objects.push_back({std::string(o.source_id), o.bbox, {}});
   }
   rt::PvsDecoder decoder(file);
   for (std::uint32_t c = 0; c < file.cell_count(); ++c) {

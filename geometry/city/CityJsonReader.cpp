@@ -842,11 +842,16 @@ void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMap
                                      "read as a building of its own");
     CityObject o;
     std::string why_not;
+    // The building's own attribute (not its parts'): the object a PVS lists is the building.
+    const std::string payload =
+        obj.contains("attributes") ? payload_of(obj["attributes"], options.payload_key) : "";
     try {
       o = read_building(objs, id, obj, why_not);
+      o.payload = payload;
     } catch (const InputError& e) {
       if (options.strict || e.problem() != InputProblem::InvalidGeometry) throw;
       o = read_building_box(objs, id, obj);
+      o.payload = payload;
       city.objects.push_back(non_occluding(std::move(o), e.what(), city.report));
       continue;
     }

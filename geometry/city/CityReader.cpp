@@ -23,6 +23,15 @@ std::string string_member(const Json& obj, const char* key) {
   return it != obj.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
+std::string payload_of(const Json& attributes, const std::string& key) {
+  if (key.empty() || !attributes.is_object()) return {};
+  const auto it = attributes.find(key);
+  if (it == attributes.end() || it->is_null()) return {};
+  // Invalid UTF-8 in the input is replaced, so that the PVS file's payloads stay UTF-8.
+  return it->is_string() ? it->get<std::string>()
+                         : it->dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
 double json_number(const Json& v, const std::string& file, const std::string& feature,
                    const char* what) {
   if (!v.is_number())
@@ -314,6 +323,14 @@ struct Reader {
       place_on_terrain(city, relative);
     for (std::size_t i = 0; i < city.objects.size(); ++i)
       city.objects[i].index = static_cast<std::uint32_t>(i);
+    city.payload_key = options.payload_key;
+    if (!options.payload_key.empty()) {
+      const auto with = std::count_if(city.objects.begin(), city.objects.end(),
+                                      [](const CityObject& o) { return !o.payload.empty(); });
+      if (with == 0)
+        city.report.warnings.push_back("--payload " + options.payload_key +
+                                       ": no object has this attribute, property or tag");
+    }
     return std::move(city);
   }
 };

@@ -71,6 +71,11 @@ CityObject non_occluding(CityObject o, const std::string& why, ReadReport& repor
 /// Throws InputError(Implausible) for a building taller than options.max_height.
 void check_plausible(const CityObject& o, const ReadOptions& options, const std::string& file);
 
+/// An object's payload (ReadOptions::payload_key): member `key` of `attributes` (CityJSON
+/// attributes, GeoJSON properties, OSM tags), a string as given and any other value as compact
+/// JSON text; "" when `key` is empty, the member is absent or null (never throws).
+std::string payload_of(const Json& attributes, const std::string& key);
+
 /// The string member `key` of `obj`, or "" when absent or not a string (never throws).
 std::string string_member(const Json& obj, const char* key);
 

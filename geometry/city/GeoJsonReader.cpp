@@ -113,7 +113,14 @@ struct Feature {
   std::string roof_shape;               // lower case; "" when not given
   std::optional<double> roof_height;    // roof:height, else roof:levels x level height
   std::string lost;                     // why no footprint of positive area is left, or empty
+  std::string payload;                  // ReadOptions::payload_key's property
 };
+
+const Json& properties_of(const Json& feature) {
+  static const Json none = Json::object();
+  return feature.contains("properties") && feature["properties"].is_object() ? feature["properties"]
+                                                                             : none;
+}
 
 struct HeightReader {
   const std::string& file;
@@ -188,9 +195,8 @@ Feature read_feature(const Json& feature, std::size_t index, const std::string& 
       f.polygons.push_back(std::move(p));
   }
   if (f.polygons.empty()) f.lost = "no footprint of positive area left after repair";
-  const Json& props = feature.contains("properties") && feature["properties"].is_object()
-                          ? feature["properties"]
-                          : Json::object();
+  const Json& props = properties_of(feature);
+  f.payload = payload_of(props, heights.options.payload_key);
   f.part = props.contains("building:part") && props["building:part"] != "no";
   heights.read(props, f);
   return f;
@@ -431,6 +437,7 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
       // Beyond repair, yet still a building: kept over the box of its coordinates.
       Feature f;
       f.id = feature_id(feature, i);
+      f.payload = payload_of(properties_of(feature), options.payload_key);
       const Box2 in = raw_box(feature, file, f.id);
       if (in.empty()) {
         report.warnings.push_back(std::string(e.what()) + " (no coordinates: skipped)");
@@ -464,6 +471,7 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
   auto object_of = [&](Feature& f) {
     CityObject o;
     o.source_id = f.id;
+    o.payload = f.payload;  // a building's own; its parts' values are not merged in
     o.footprint = f.polygons;
     o.ground_z = 0;
     return o;

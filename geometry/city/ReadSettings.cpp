@@ -44,6 +44,11 @@ SettingTable<ReadOptions> make_table() {
                                 "Tallest plausible building: taller input is refused; buildings "
                                 "of unknown height are tested up to it",
                                 [](R& r) -> double& { return r.max_height; }));
+  t.push_back(text_setting<R>(
+      "payload", S::Read,
+      "Attribute (CityJSON), property (GeoJSON) or tag (OSM) whose value each object carries "
+      "into the PVS file, e.g. a mesh or tile key",
+      [](R& r) -> std::string& { return r.payload_key; }));
   return t;
 }
 

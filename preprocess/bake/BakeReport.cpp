@@ -62,6 +62,7 @@ std::string report_json(const BakeReport& r) {
                  {"bytes_per_cell", r.cells > 0 ? double(r.output_bytes) / double(r.cells) : 0.0}};
   j["repairs"] = r.repairs;
   j["non_occluding"] = r.non_occluding;
+  j["warnings"] = r.warnings;
   j["seconds"] = {{"read", r.seconds.read},
                   {"scene", r.seconds.scene},
                   {"visibility", r.seconds.visibility},
@@ -107,6 +108,7 @@ std::string summary_text(const BakeReport& r) {
                     r.repairs.size(), r.non_occluding.size()));
   for (const std::string& text : r.repairs) out += "  repaired:    " + text + "\n";
   for (const std::string& text : r.non_occluding) out += "  no occluder: " + text + "\n";
+  for (const std::string& text : r.warnings) out += "  warning:     " + text + "\n";
   add(std::snprintf(
       line, sizeof line, "PVS:         mean %.1f, max %llu objects; %.1f %% culled on average\n",
       r.mean_pvs(), static_cast<unsigned long long>(r.pvs_max), 100.0 * r.fraction_culled()));

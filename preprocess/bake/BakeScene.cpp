@@ -127,7 +127,9 @@ runtime::PvsBake BakeScene::pvs_file(std::vector<std::vector<std::uint32_t>> pvs
   for (const geometry::CityObject& o : city_->objects)
     bake.objects.push_back({o.source_id,
                             {o.bbox.xy.min.x, o.bbox.xy.min.y, o.bbox.zmin, o.bbox.xy.max.x,
-                             o.bbox.xy.max.y, o.bbox.zmax}});
+                             o.bbox.xy.max.y, o.bbox.zmax},
+                            o.payload});
+  bake.payload_key = city_->payload_key;
   bake.cells.reserve(cell_count());
   for (std::uint32_t c = 0; c < cell_count(); ++c)
     bake.cells.push_back(cell_record(c, std::move(pvs[c])));

@@ -257,6 +257,7 @@ int Run::execute() {
   report_.objects = city_.objects.size();
   report_.repairs = city_.report.repairs;
   report_.non_occluding = city_.report.non_occluding;
+  report_.warnings = city_.report.warnings;
   note("read %zu objects from %zu files (%.2f s)", city_.objects.size(), request_.inputs.size(),
        report_.seconds.read);
 

@@ -57,6 +57,7 @@ std::string config_text(const Setting& s, const nlohmann::json& value, const std
     }
     case SettingKind::Choice:
     case SettingKind::Band:
+    case SettingKind::Text:
       break;
   }
   if (!value.is_string()) throw wrong("a string");

@@ -170,6 +170,23 @@ urbanpvs_status urbanpvs_object(const urbanpvs_file* file, uint32_t object, cons
   return URBANPVS_OK;
 }
 
+urbanpvs_status urbanpvs_object_payload(const urbanpvs_file* file, uint32_t object,
+                                        const char** payload, size_t* size) {
+  if (file == nullptr || payload == nullptr || size == nullptr) return URBANPVS_INVALID_ARGUMENT;
+  ObjectInfo info;
+  const Status status = file->file.object(object, info);
+  if (status != Status::kOk) return to_c(status);
+  *payload = info.payload.data();
+  *size = info.payload.size();
+  return URBANPVS_OK;
+}
+
+void urbanpvs_payload_key(const urbanpvs_file* file, const char** key, size_t* size) {
+  const std::string_view k = file != nullptr ? file->file.payload_key() : std::string_view{};
+  if (key != nullptr) *key = k.data();
+  if (size != nullptr) *size = k.size();
+}
+
 urbanpvs_status urbanpvs_cell(const urbanpvs_file* file, uint32_t cell, double triangle[6],
                               double z_range[2], uint32_t neighbours[3]) {
   if (file == nullptr) return URBANPVS_INVALID_ARGUMENT;

@@ -117,7 +117,7 @@ Status read_container(const unsigned char* data, std::size_t size, bool verify_c
 }
 
 std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections,
-                                       std::uint16_t major) {
+                                       std::uint16_t major, std::uint16_t minor) {
   using namespace format;
   const std::uint32_t header_size =
       kFixedHeaderSize + static_cast<std::uint32_t>(sections.size()) * kSectionEntrySize;
@@ -127,7 +127,7 @@ std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections
   ByteWriter w;
   w.raw(kMagic, sizeof kMagic);
   w.u16(major);
-  w.u16(format::latest_minor(major));
+  w.u16(minor);
   w.u32(header_size);
   w.u64(file_size);
   w.u32(static_cast<std::uint32_t>(sections.size()));

@@ -74,6 +74,13 @@ Status load_sections(PvsFileData& file, const LoadOptions& options, LoadError& e
   if (!read_pvs(pvs, file.cells.count, file.objects.count, file.pvs, expansion, detail)) {
     return fail(error, Status::kMalformedSection, detail, SectionId::kPvs);
   }
+  if (const SectionInfo* s = c.major >= 2 ? find_section(c, SectionId::kPayloads) : nullptr) {
+    const SectionBytesView view{file.data + s->offset, static_cast<std::size_t>(s->length),
+                                extension};
+    if (!read_payloads(view, file.objects.count, file.payloads, detail)) {
+      return fail(error, Status::kMalformedSection, detail, SectionId::kPayloads);
+    }
+  }
   file.geodetic_frame = GeodeticFrame(file.metadata.frame.geodetic_origin);
   const std::size_t half = std::max<std::size_t>(file.pvs.max_pvs_size, 1);
   file.decode_buffer_size = file.pvs.max_chain >= 2 ? 2 * half : half;

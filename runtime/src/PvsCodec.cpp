@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "PvsCodec.hpp"
 
+#include <algorithm>
+
 #include "Bits.hpp"
 #include "ByteReader.hpp"
 #include "ByteWriter.hpp"
@@ -408,6 +410,43 @@ Status decode_cell(const PvsSection& section, std::uint32_t cell, std::uint32_t*
   }
   count = n;
   return Status::kOk;
+}
+
+bool merge_decoded(const DiffHeader& diff, const std::uint32_t* reference, std::size_t count,
+                   std::uint32_t* out, std::size_t capacity, std::size_t& written) noexcept {
+  if (count > UINT32_MAX) return false;
+  ArraySource src(reference);
+  return merge(src, static_cast<std::uint32_t>(count), diff, out, capacity, written);
+}
+
+bool check_diff(const DiffHeader& diff, std::uint32_t count, const std::uint32_t* reference,
+                std::size_t reference_count, std::uint32_t object_count) noexcept {
+  const unsigned char* additions_begin = diff.lists;
+  if (!skip_varints(additions_begin, diff.end, diff.removed)) return false;
+  GapStream removals(diff.lists, additions_begin, diff.removed);
+  GapStream additions(additions_begin, diff.end, diff.added);
+  std::uint64_t removal, addition;
+  if (!removals.next(removal) || !additions.next(addition)) return false;
+  // An addition equal to a kept entry would repeat it: it must sit on a removed position.
+  // Additions and their positions both increase, so one pass over each list does.
+  const std::uint32_t* const end = reference + reference_count;
+  const std::uint32_t* at = reference;
+  while (addition != kEnd) {
+    if (addition >= object_count) return false;
+    at = std::lower_bound(at, end, static_cast<std::uint32_t>(addition));
+    if (at != end && *at == addition) {
+      const std::uint64_t position = static_cast<std::uint64_t>(at - reference);
+      while (removal < position) {
+        if (!removals.next(removal)) return false;
+      }
+      if (removal != position) return false;
+    }
+    if (!additions.next(addition)) return false;
+  }
+  while (removal != kEnd) {  // the positions not met above, each inside the reference
+    if (removal >= reference_count || !removals.next(removal)) return false;
+  }
+  return std::uint64_t{count} + diff.removed == reference_count + std::uint64_t{diff.added};
 }
 
 bool cell_contains(const PvsSection& section, std::uint32_t cell, std::uint32_t object) noexcept {

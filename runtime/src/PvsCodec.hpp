@@ -73,6 +73,18 @@ bool resolve_chain(const PvsSection& section, std::uint32_t cell, Chain& chain) 
 Status decode_cell(const PvsSection& section, std::uint32_t cell, std::uint32_t* buffer,
                    std::size_t half, std::size_t& count) noexcept;
 
+/// One diff step from a decoded reference list reference[0, count) into out[0, written), as
+/// decode_cell does (checked reads and writes; the result is not checked ascending).
+bool merge_decoded(const DiffHeader& diff, const std::uint32_t* reference, std::size_t count,
+                   std::uint32_t* out, std::size_t capacity, std::size_t& written) noexcept;
+
+/// Whether a diff of declared size `count` against the decoded, strictly increasing list
+/// reference[0, reference_count) (entries < object_count) gives a strictly increasing list of
+/// `count` entries below object_count, without building it: O((removed + added) log n). Exactly
+/// when merge_decoded succeeds with `count` entries, strictly increasing and in range.
+bool check_diff(const DiffHeader& diff, std::uint32_t count, const std::uint32_t* reference,
+                std::size_t reference_count, std::uint32_t object_count) noexcept;
+
 /// Whether `object` is in the PVS of `cell`, by scanning the encoded lists (no buffer).
 bool cell_contains(const PvsSection& section, std::uint32_t cell, std::uint32_t object) noexcept;
 

@@ -164,7 +164,15 @@ std::uint32_t PvsFile::cell_count() const noexcept {
 Status PvsFile::object(std::uint32_t index, ObjectInfo& out) const noexcept {
   if (index >= object_count()) return Status::kOutOfRange;
   out = detail::object_at(data_->objects, index);
+  out.payload = detail::payload_at(data_->payloads, index);
   return Status::kOk;
+}
+
+bool PvsFile::has_payloads() const noexcept {
+  return data_ && data_->payloads.present;
+}
+std::string_view PvsFile::payload_key() const noexcept {
+  return data_ ? data_->payloads.key : std::string_view{};
 }
 
 Status PvsFile::cell(std::uint32_t index, CellGeometry& out) const noexcept {

@@ -22,6 +22,7 @@ struct PvsFileData {
   CellTable cells;
   GridIndex grid;
   PvsView pvs;
+  PayloadsView payloads;  ///< not present unless the file has a payloads section (2.1)
   PvsExpansion expanded;  ///< empty unless LoadOptions::expand_pvs
   std::size_t decode_buffer_size = 0;
   GeodeticFrame geodetic_frame{GeodeticOrigin{}};  ///< from the metadata, for geographic files

@@ -114,6 +114,152 @@ class PayloadPlanner {
   std::vector<char> done_;
 };
 
+/// The load-time check of every cell's PVS, and the expansion, over the forest of diff
+/// references: roots are the cells stored in full, children the diffs against a cell.
+struct PvsValidation {
+  PvsValidation(const PvsSection& s, std::uint32_t objects) : section(s), object_count(objects) {}
+
+  const PvsSection& section;
+  std::uint32_t object_count;
+  std::vector<std::uint32_t> reference;    ///< per cell: its diff reference, or kNoCell
+  std::vector<std::uint32_t> first_child;  ///< cell_count + 1 offsets into `children`
+  std::vector<std::uint32_t> children;
+  std::size_t half = 1;                     ///< slots per level buffer (>= the largest PVS)
+  std::unique_ptr<std::uint32_t[]> levels;  ///< (max_depth + 1) buffers of `half` slots
+  std::uint32_t max_depth = 0;              ///< the declared bound on diff chains
+  std::uint32_t deepest = 0;                ///< the longest chain met
+  std::uint32_t visited = 0;                ///< cells checked
+
+  void index_children() {
+    const std::size_t n = reference.size();
+    first_child.assign(n + 1, 0);
+    for (std::uint32_t r : reference)
+      if (r != kNoCell) ++first_child[r + 1];
+    for (std::size_t c = 0; c < n; ++c) first_child[c + 1] += first_child[c];
+    children.resize(first_child[n]);
+    std::vector<std::uint32_t> fill(first_child.begin(), first_child.end() - 1);
+    for (std::uint32_t c = 0; c < n; ++c)
+      if (reference[c] != kNoCell) children[fill[reference[c]]++] = c;
+  }
+
+  bool has_children(std::uint32_t cell) const { return first_child[cell + 1] > first_child[cell]; }
+
+  /// A decoded list: strictly increasing and below object_count.
+  bool valid_list(const std::uint32_t* list, std::size_t n) const {
+    for (std::size_t i = 1; i < n; ++i)
+      if (list[i] <= list[i - 1]) return false;
+    return n == 0 || list[n - 1] < object_count;
+  }
+
+  bool diff_of(std::uint32_t cell, PayloadHeader& header, DiffHeader& diff) const {
+    return read_payload_header(section, cell, header) &&
+           read_diff_header(section, cell, header, diff);
+  }
+
+  /// Checks the diffs against `cell` (its decoded list at `list`, at depth `level`): a leaf
+  /// without building its list, a cell others refer to by building it one level down.
+  bool check_children(std::uint32_t cell, const std::uint32_t* list, std::size_t n,
+                      std::uint32_t level, const char*& detail) {
+    if (first_child[cell + 1] > first_child[cell] && level + 1 > max_depth) {
+      detail = "pvs: bad diff reference chain";
+      return false;
+    }
+    for (std::uint32_t k = first_child[cell]; k < first_child[cell + 1]; ++k) {
+      const std::uint32_t child = children[k];
+      ++visited;
+      deepest = std::max(deepest, level + 1);
+      PayloadHeader header;
+      DiffHeader diff;
+      if (!diff_of(child, header, diff)) {
+        detail = "pvs: cell payload does not decode";
+        return false;
+      }
+      if (!has_children(child)) {
+        if (!check_diff(diff, header.count, list, n, object_count)) {
+          detail = "pvs: diff does not give an ascending list of its size in range";
+          return false;
+        }
+        continue;
+      }
+      std::uint32_t* next = levels.get() + (level + 1) * half;
+      std::size_t m = 0;
+      if (!merge_decoded(diff, list, n, next, half, m) || m != header.count) {
+        detail = "pvs: cell payload does not decode";
+        return false;
+      }
+      if (!valid_list(next, m)) {
+        detail = "pvs: decoded list not ascending or object index out of range";
+        return false;
+      }
+      if (!check_children(child, next, m, level + 1, detail)) return false;
+    }
+    return true;
+  }
+
+  bool check_all(const char*& detail) {
+    for (std::uint32_t cell = 0; cell < reference.size(); ++cell) {
+      if (reference[cell] != kNoCell) continue;
+      ++visited;
+      std::size_t n = 0;
+      if (decode_cell(section, cell, levels.get(), half, n) != Status::kOk) {
+        detail = "pvs: cell payload does not decode";
+        return false;
+      }
+      if (!valid_list(levels.get(), n)) {
+        detail = "pvs: decoded list not ascending or object index out of range";
+        return false;
+      }
+      if (!check_children(cell, levels.get(), n, 0, detail)) return false;
+    }
+    return true;
+  }
+
+  /// Every list decoded into its place in cell order: full cells from their payload, diffs
+  /// from their reference's place (filled before them: parents first). Only after check_all.
+  bool expand(PvsExpansion& e, std::uint64_t total, const char*& detail) {
+    const std::size_t n = reference.size();
+    e.offsets.resize(n + 1);
+    e.offsets[0] = 0;
+    for (std::uint32_t c = 0; c < n; ++c) {
+      PayloadHeader header;
+      read_payload_header(section, c, header);
+      e.offsets[c + 1] = e.offsets[c] + header.count;
+    }
+    e.ids.resize(static_cast<std::size_t>(total));
+    for (std::uint32_t cell = 0; cell < n; ++cell) {
+      if (reference[cell] != kNoCell) continue;
+      std::size_t got = 0;
+      if (decode_cell(section, cell, e.ids.data() + e.offsets[cell], size(e, cell), got) !=
+              Status::kOk ||
+          !expand_children(e, cell)) {
+        detail = "pvs: cell payload does not decode";
+        return false;
+      }
+    }
+    return true;
+  }
+
+  static std::size_t size(const PvsExpansion& e, std::uint32_t cell) {
+    return static_cast<std::size_t>(e.offsets[cell + 1] - e.offsets[cell]);
+  }
+
+  bool expand_children(PvsExpansion& e, std::uint32_t cell) {
+    for (std::uint32_t k = first_child[cell]; k < first_child[cell + 1]; ++k) {
+      const std::uint32_t child = children[k];
+      PayloadHeader header;
+      DiffHeader diff;
+      std::size_t got = 0;
+      if (!diff_of(child, header, diff) ||
+          !merge_decoded(diff, e.ids.data() + e.offsets[cell], size(e, cell),
+                         e.ids.data() + e.offsets[child], size(e, child), got) ||
+          got != size(e, child) || !expand_children(e, child)) {
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
 }  // namespace
 
 std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
@@ -157,48 +303,40 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
     detail = "pvs: offsets do not match the section length";
     return false;
   }
-  // Pass 1: headers, sizes and chains (cheap), so pass 2 knows its scratch size.
+  // Pass 1, in file order: each cell's header, size and reference, so pass 2 knows its scratch
+  // size and the tree of references.
   out.max_pvs_size = 0;
-  out.max_chain = 0;
   out.total_entries = 0;
+  PvsValidation v(s, object_count);
+  v.reference.resize(count);
   for (std::uint32_t cell = 0; cell < count; ++cell) {
     PayloadHeader header;
-    Chain chain;
-    if (!read_payload_header(s, cell, header) || header.count > object_count) {
+    DiffHeader diff;
+    if (!read_payload_header(s, cell, header) || header.count > object_count ||
+        (header.kind == format::PvsKind::kDiff && !read_diff_header(s, cell, header, diff))) {
       detail = "pvs: bad cell payload header";
       return false;
     }
-    if (!resolve_chain(s, cell, chain) || chain.diff_steps > declared_chain) {
-      detail = "pvs: bad diff reference chain";
-      return false;
-    }
+    v.reference[cell] = header.kind == format::PvsKind::kDiff ? diff.reference : kNoCell;
     out.max_pvs_size = std::max(out.max_pvs_size, header.count);
-    out.max_chain = std::max(out.max_chain, chain.diff_steps);
     out.total_entries += header.count;
   }
-  // Pass 2: decode every cell once, exactly as lookups will, and check the result. After this
-  // the query functions can only meet data that decodes cleanly.
-  const std::size_t half = std::max<std::size_t>(out.max_pvs_size, 1);
-  std::unique_ptr<std::uint32_t[]> scratch(new std::uint32_t[out.max_chain >= 2 ? 2 * half : half]);
-  // No reserve from the headers' counts: they are only trusted once decoded.
-  if (expansion != nullptr) expansion->offsets.assign(1, 0);
-  for (std::uint32_t cell = 0; cell < count; ++cell) {
-    std::size_t n = 0;
-    if (decode_cell(s, cell, scratch.get(), half, n) != Status::kOk) {
-      detail = "pvs: cell payload does not decode";
-      return false;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (scratch[i] >= object_count || (i > 0 && scratch[i] <= scratch[i - 1])) {
-        detail = "pvs: decoded list not ascending or object index out of range";
-        return false;
-      }
-    }
-    if (expansion != nullptr) {
-      expansion->ids.insert(expansion->ids.end(), scratch.get(), scratch.get() + n);
-      expansion->offsets.push_back(expansion->ids.size());
-    }
+  // Pass 2: every cell once, from its full base down the tree of diffs that refer to it (each
+  // full list decoded once, not once per cell that refers to it). A cell it does not reach is
+  // on a cycle of references; one deeper than the declared bound is too far from its base.
+  // After this the query functions can only meet data that decodes cleanly.
+  v.index_children();
+  v.half = std::max<std::size_t>(out.max_pvs_size, 1);
+  v.max_depth = declared_chain;
+  v.levels.reset(new std::uint32_t[(std::size_t{declared_chain} + 1) * v.half]);
+  if (!v.check_all(detail)) return false;
+  if (v.visited != count) {
+    detail = "pvs: bad diff reference chain";
+    return false;
   }
+  out.max_chain = v.deepest;
+  // Only now are the counts (and so their total) known to be true: allocate and fill.
+  if (expansion != nullptr && !v.expand(*expansion, out.total_entries, detail)) return false;
   return true;
 }
 

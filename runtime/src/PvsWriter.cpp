@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// encode(): validate the bake, build the point-location grid, write the five sections.
+// encode(): validate the bake, build the point-location grid (1.x), write the sections.
 #include "urbanpvs/runtime/PvsWriter.hpp"
 
 #include <cmath>
@@ -50,6 +50,7 @@ std::string validate_metadata(const Metadata& m) {
 std::string validate_object(const ObjectRecord& o, std::size_t i) {
   const std::string where = "object " + std::to_string(i) + ": ";
   if (!valid_string(o.source_id)) return where + "source id is not valid UTF-8";
+  if (!valid_string(o.payload)) return where + "payload is not valid UTF-8";
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(o.bbox[k]) || !std::isfinite(o.bbox[k + 3]) || o.bbox[k] > o.bbox[k + 3]) {
       return where + "bbox not finite or min > max";
@@ -87,8 +88,13 @@ std::string validate(const PvsBake& bake) {
   if (bake.objects.size() >= UINT32_MAX) return "too many objects (at most 2^32 - 2)";
   if (bake.cells.size() >= UINT32_MAX) return "too many cells (at most 2^32 - 2)";
   std::string problem = validate_metadata(bake.meta);
+  if (problem.empty() && !valid_string(bake.payload_key))
+    problem = "payload key is not valid UTF-8";
   for (std::size_t i = 0; problem.empty() && i < bake.objects.size(); ++i) {
     problem = validate_object(bake.objects[i], i);
+    if (problem.empty() && bake.payload_key.empty() && !bake.objects[i].payload.empty()) {
+      problem = "object " + std::to_string(i) + ": payload given but no payload key";
+    }
   }
   for (std::size_t i = 0; problem.empty() && i < bake.cells.size(); ++i) {
     problem = validate_cell(bake.cells[i], i, bake.cells.size(), bake.objects.size());
@@ -102,6 +108,10 @@ std::vector<std::byte> encode(const PvsBake& bake, const EncodeOptions& options)
       options.format_major > format::kMajorVersion) {
     throw PvsWriteError("format_major " + std::to_string(options.format_major) +
                         ": this library writes versions 1 and 2");
+  }
+  const bool payloads = !bake.payload_key.empty();
+  if (payloads && options.format_major < 2) {
+    throw PvsWriteError("object payloads need format 2.1 (format_major 2)");
   }
   using format::SectionId;
   std::vector<detail::SectionBytes> sections;
@@ -124,7 +134,12 @@ std::vector<std::byte> encode(const PvsBake& bake, const EncodeOptions& options)
   }
   sections.emplace_back(static_cast<std::uint32_t>(SectionId::kPvs),
                         detail::write_pvs(bake.cells, options));
-  return detail::write_container(sections, options.format_major);
+  if (payloads) {
+    sections.emplace_back(static_cast<std::uint32_t>(SectionId::kPayloads),
+                          detail::write_payloads(bake.payload_key, bake.objects));
+  }
+  // The lowest minor that holds what the file uses: without payloads it is a 2.0 file.
+  return detail::write_container(sections, options.format_major, payloads ? 1 : 0);
 }
 
 }  // namespace urbanpvs::runtime

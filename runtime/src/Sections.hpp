@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
-// Reading and writing of the five sections (FORMAT.md, one heading each). Each reader checks
+// Reading and writing of the sections (FORMAT.md, one heading each). Each reader checks
 // its section completely against its length and reports the failed check in `detail`; the
 // views it fills point into the caller's buffer. Readers may throw std::bad_alloc (the loader
 // turns it into Status::kOutOfMemory); writers throw PvsWriteError on size limits.
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -91,6 +92,20 @@ bool read_grid(const SectionBytesView& in, const CellTable& cells, GridIndex& ou
 /// Builds the grid of a 2.x file from its cells; false (with `detail`) when it does not fit the
 /// 32-bit entries.
 bool build_grid_index(const CellTable& cells, GridIndex& out, const char*& detail);
+
+// --- payloads (2.1, optional) -------------------------------------------------------------------
+struct PayloadsView {
+  std::string_view key;                    ///< the attribute or tag the values came from
+  const unsigned char* offsets = nullptr;  ///< object count + 1 little-endian u32
+  const unsigned char* data = nullptr;
+  bool present = false;
+};
+std::vector<unsigned char> write_payloads(const std::string& key,
+                                          const std::vector<ObjectRecord>& objects);
+bool read_payloads(const SectionBytesView& in, std::uint32_t object_count, PayloadsView& out,
+                   const char*& detail);
+/// Payload of object `index` (< object count) of a validated view; empty when there is none.
+std::string_view payload_at(const PayloadsView& view, std::uint32_t index) noexcept;
 
 // --- pvs ---------------------------------------------------------------------------------------
 struct PvsView {

@@ -61,6 +61,8 @@ const char* section_name(std::uint32_t id) noexcept {
       return "grid";
     case SectionId::kPvs:
       return "pvs";
+    case SectionId::kPayloads:
+      return "payloads";
   }
   return "unknown";
 }

@@ -65,7 +65,9 @@ bool write_cell_report(const runtime::PvsFile& file, std::uint32_t cell, std::os
   for (std::uint32_t object : decoder) {
     runtime::ObjectInfo info_object;
     file.object(object, info_object);
-    out << "    " << object << "\t" << info_object.source_id << "\n";
+    out << "    " << object << "\t" << info_object.source_id;
+    if (!info_object.payload.empty()) out << "\t" << info_object.payload;
+    out << "\n";
   }
   return true;
 }

@@ -54,8 +54,9 @@ void write_objects(const runtime::PvsFile& file, std::ostream& out) {
     file.object(i, o);
     const auto lo = reported(file, o.bbox[0], o.bbox[1], o.bbox[2]);
     const auto hi = reported(file, o.bbox[3], o.bbox[4], o.bbox[5]);
-    out << (i ? ",\n" : "\n") << "{\"index\":" << i << ",\"id\":" << json_string(o.source_id)
-        << ",\"bbox\":";
+    out << (i ? ",\n" : "\n") << "{\"index\":" << i << ",\"id\":" << json_string(o.source_id);
+    if (file.has_payloads()) out << ",\"payload\":" << json_string(o.payload);
+    out << ",\"bbox\":";
     write_point_list(out, {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]});
     out << '}';
   }

@@ -75,6 +75,16 @@ void write_summary(const runtime::PvsFile& file, const std::string& name, std::o
   const std::uint32_t objects = file.object_count();
   const std::uint32_t cells = file.cell_count();
   out << "objects:     " << objects << "\n";
+  if (file.has_payloads()) {
+    std::uint32_t with = 0;
+    for (std::uint32_t i = 0; i < objects; ++i) {
+      runtime::ObjectInfo o;
+      file.object(i, o);
+      with += o.payload.empty() ? 0 : 1;
+    }
+    out << "payloads:    " << with << " of " << objects << " objects, from \"" << file.payload_key()
+        << "\"\n";
+  }
   out << "cells:       " << cells << "\n";
   out << "pvs size:    min " << s.min << ", mean " << fmt("%.1f", s.mean) << ", max " << s.max
       << "\n";

@@ -72,7 +72,7 @@ std::string sample_osm() {
     for (int j = 0; j < 12; ++j) s += node(i, j);
   // A building with a height in metres and a unit.
   s += way(1, {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}},
-           tag("building", "yes") + tag("height", "12 m"));
+           tag("building", "yes") + tag("height", "12 m") + tag("ref:tile", "tiles/7"));
   // Height from levels: 4 x 3 m.
   s += way(2, {{2, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 0}},
            tag("building", "apartments") + tag("building:levels", "4"));
@@ -82,7 +82,7 @@ std::string sample_osm() {
   s +=
       way(4, {{6, 0}, {9, 0}, {9, 2}, {6, 2}, {6, 0}}, tag("building", "yes") + tag("height", "9"));
   s += way(5, {{7, 0}, {8, 0}, {8, 1}, {7, 1}, {7, 0}},
-           tag("building:part", "yes") + tag("height", "30"));
+           tag("building:part", "yes") + tag("height", "30") + tag("ref:tile", "part-only"));
   // The outer and inner ways of a courtyard multipolygon (tags on the relation).
   s += way(10, {{0, 3}, {4, 3}, {4, 7}, {0, 7}, {0, 3}}, "");
   s += way(11, {{1, 4}, {1, 6}, {3, 6}, {3, 4}, {1, 4}}, "");
@@ -96,7 +96,8 @@ std::string sample_osm() {
   s += way(33, {{5, 10}, {7, 10}, {7, 11}, {5, 11}, {5, 10}},
            tag("highway", "pedestrian") + tag("area", "yes"));
   const std::string mp = tag("type", "multipolygon") + tag("building", "yes");
-  s += relation(20, member(10, "outer") + member(11, "inner"), mp + tag("height", "20"));
+  s += relation(20, member(10, "outer") + member(11, "inner"),
+                mp + tag("height", "20") + tag("ref:tile", "court"));
   s += relation(21, member(12, "outer"), mp);
   // A member way outside the extract.
   s += relation(22, member(999, "outer"), mp);
@@ -141,6 +142,22 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
   // The assembly problems are reported per element.
   EXPECT_TRUE(mentions(city.report.warnings, "r21", "")) << "unclosed ring of r21";
   EXPECT_TRUE(mentions(city.report.warnings, "r22", "outside the extract"));
+  fs::remove(path);
+}
+
+TEST(OsmReader, PayloadIsTheNamedTagOfTheBuilding) {
+  const std::string path = write_temp("payload.osm", sample_osm());
+  ReadOptions options;
+  options.default_height = 10;
+  options.payload_key = "ref:tile";
+  const City city = read_city({path}, options);
+  EXPECT_EQ(city.payload_key, "ref:tile");
+  EXPECT_EQ(find(city, "w1")->payload, "tiles/7");
+  EXPECT_EQ(find(city, "r20")->payload, "court");  // a multipolygon's tag is on its relation
+  EXPECT_EQ(find(city, "w2")->payload, "");
+  EXPECT_EQ(find(city, "w4")->payload, "");  // its part's tag is not the building's
+  options.payload_key.clear();
+  for (const CityObject& o : read_city({path}, options).objects) EXPECT_EQ(o.payload, "");
   fs::remove(path);
 }
 

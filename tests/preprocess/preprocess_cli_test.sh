@@ -14,6 +14,7 @@
 #   help      --help lists every option
 #   repairs   a broken ring is repaired and a building without height kept as an object that
 #             occludes nothing: listed in the summary and the report, present in the file
+#   payloads  --payload carries a property into the file (2.1) as each object's payload
 # Usage: preprocess_cli_test.sh CASE WORK_DIR PREPROCESS CITYGEN VALIDATE INSPECT BAD_INPUT_DIR
 set -euo pipefail
 case_name=$1 work=$2 preprocess=$3 citygen=$4 validate=$5 inspect=$6 bad=$7
@@ -272,11 +273,44 @@ JSON
     fail "urbanpvs-validate found misses (or failed)"
   ;;
 
+payloads)
+  # --payload NAME carries a property into the file: strings as given, numbers as JSON text,
+  # nothing for a building without it; the file is 2.1 and says where the values came from.
+  cat > tiles.geojson <<'JSON'
+{"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:3067"}},
+ "features": [
+  {"type": "Feature", "id": "a", "properties": {"building": "yes", "height": 12, "tile": "t/0/1"},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [30, 0], [30, 20], [0, 20], [0, 0]]]}},
+  {"type": "Feature", "id": "b", "properties": {"building": "yes", "height": 9, "tile": 42},
+   "geometry": {"type": "Polygon", "coordinates": [[[60, 0], [70, 0], [70, 10], [60, 10], [60, 0]]]}},
+  {"type": "Feature", "id": "c", "properties": {"building": "yes", "height": 9},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 60], [20, 60], [20, 75], [0, 75], [0, 60]]]}}
+ ]}
+JSON
+  "$preprocess" tiles.geojson -o tiles.pvs --max-cell-edge 20 --epsilon 2 --payload tile --quiet ||
+    fail "the bake with --payload failed"
+  "$inspect" tiles.pvs > summary.txt
+  grep -q 'format:      2.1' summary.txt || fail "not a 2.1 file: $(cat summary.txt)"
+  grep -q 'payloads:    2 of 3 objects, from "tile"' summary.txt ||
+    fail "payloads not counted: $(cat summary.txt)"
+  "$inspect" tiles.pvs --json > dump.json
+  grep -q '"id":"a","payload":"t/0/1"' dump.json || fail "string payload lost"
+  grep -q '"id":"b","payload":"42"' dump.json || fail "number payload not its JSON text"
+  grep -q '"id":"c","payload":""' dump.json || fail "a building without the property has a payload"
+  "$preprocess" tiles.geojson -o plain.pvs --max-cell-edge 20 --epsilon 2 --quiet
+  "$inspect" plain.pvs | grep -q 'format:      2.0' || fail "a bake without --payload is not 2.0"
+  "$preprocess" tiles.geojson -o none.pvs --max-cell-edge 20 --epsilon 2 --payload nosuch \
+    --report none.json 2> stderr.txt || fail "the bake with an unknown --payload failed"
+  grep -q '  warning:     --payload nosuch: no object has this attribute, property or tag' stderr.txt ||
+    fail "no warning for a payload key no object has: $(cat stderr.txt)"
+  grep -q '"warnings": \[' none.json || fail "report lacks the warnings"
+  ;;
+
 help)
   "$preprocess" --help > help.txt
   for option in --output --epsilon --pixel --max-cell-edge --eye-band --region --default-height \
                 --threads --backend --method --report --resume --quiet --config --strict \
-                --max-height; do
+                --max-height --payload; do
     grep -q -- "$option" help.txt || fail "--help does not list $option"
   done
   ;;

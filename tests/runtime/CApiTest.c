@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* The C API from a translation unit compiled as C99: open the golden file, locate, decode. */
+/* The C API from a translation unit compiled as C99: open a golden file (v1_0.pvs, or v2_1.pvs
+ * with payloads), locate, decode. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +21,9 @@ int main(int argc, char** argv) {
   urbanpvs_file* file = NULL;
   uint32_t* buffer;
   size_t count = 0, id_size = 0;
-  const char* id = NULL;
+  const char *id = NULL, *payload = NULL, *key = NULL;
+  size_t payload_size = 0, key_size = 0;
+  int with_payloads;
   double bbox[6], triangle[6], z[2], xyz[3] = {85002.0, 446002.0, 0.25}, local[3];
   uint32_t neighbours[3], cell, o;
   urbanpvs_decoder* decoder = NULL;
@@ -63,6 +66,19 @@ int main(int argc, char** argv) {
   CHECK(id_size == 18 && strncmp(id, "NL.IMBAG.Pand.1003", id_size) == 0);
   CHECK(bbox[0] == 20.0 && bbox[5] == 9.0);
   CHECK(urbanpvs_object(file, 120, &id, &id_size, bbox) == URBANPVS_OUT_OF_RANGE);
+  /* Payloads: v2_1.pvs carries "tile" values (every third object none), v1_0.pvs none. */
+  urbanpvs_payload_key(file, &key, &key_size);
+  with_payloads = key_size == 4 && strncmp(key, "tile", 4) == 0;
+  CHECK(with_payloads || key_size == 0);
+  CHECK(urbanpvs_object_payload(file, 3, &payload, &payload_size) == URBANPVS_OK);
+  CHECK(with_payloads ? payload_size == 13 && strncmp(payload, "tiles/0/3.glb", 13) == 0
+                      : payload_size == 0);
+  CHECK(urbanpvs_object_payload(file, 2, &payload, &payload_size) == URBANPVS_OK);
+  CHECK(payload_size == 0);
+  CHECK(urbanpvs_object_payload(file, 120, &payload, &payload_size) == URBANPVS_OUT_OF_RANGE);
+  CHECK(urbanpvs_object_payload(file, 3, NULL, &payload_size) == URBANPVS_INVALID_ARGUMENT);
+  urbanpvs_payload_key(NULL, &key, &key_size);
+  CHECK(key_size == 0);
   CHECK(urbanpvs_cell(file, 2, triangle, z, neighbours) == URBANPVS_OK);
   CHECK(triangle[0] == 10.0 && triangle[2] == 20.0 && z[1] == 3.0);
   CHECK(neighbours[0] == URBANPVS_NO_CELL && neighbours[1] == 3 && neighbours[2] == 1);

@@ -3,6 +3,7 @@
 // triangle predicate.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -100,6 +101,69 @@ TEST(Triangle, SharedEdgesLeaveNoCracks) {
     ASSERT_TRUE(rt::triangle_contains(left, x, y) || rt::triangle_contains(right, x, y))
         << x << " " << y;
   }
+}
+
+}  // namespace
+
+namespace {
+
+/// A diff payload body (after kind and count): reference, removed positions, added ids, each
+/// list gap-coded, exactly as FORMAT.md describes kind 2 — written here, not by the encoder, so
+/// that invalid diffs (collisions, positions past the reference) can be built too.
+std::vector<unsigned char> diff_lists(const std::vector<std::uint32_t>& removed,
+                                      const std::vector<std::uint32_t>& added) {
+  std::vector<unsigned char> out;
+  for (const auto* list : {&removed, &added}) {
+    std::uint64_t base = 0;
+    for (std::uint32_t v : *list) {
+      detail::append_varint(out, static_cast<std::uint32_t>(v - base));
+      base = std::uint64_t{v} + 1;
+    }
+  }
+  return out;
+}
+
+/// check_diff must accept exactly the diffs whose merge gives a strictly increasing list of the
+/// declared size in range — it stands in for decoding them at load.
+TEST(CheckDiff, AgreesWithMergeAndTheAscendingCheck) {
+  std::mt19937 rng(5);
+  const std::uint32_t objects = 64;
+  int accepted = 0, refused = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::vector<std::uint32_t> ref;
+    for (std::uint32_t o = 0; o < objects; ++o)
+      if (rng() % 3 == 0) ref.push_back(o);
+    // Removed positions and added ids, strictly increasing; sometimes past the reference or an
+    // id already kept (a collision), sometimes an id out of range.
+    std::vector<std::uint32_t> removed, added;
+    for (std::uint32_t p = 0; p < ref.size() + 2; ++p)
+      if (rng() % 8 == 0) removed.push_back(p);
+    for (std::uint32_t o = 0; o < objects + 2; ++o) {
+      const bool kept = std::binary_search(ref.begin(), ref.end(), o);
+      if (rng() % (kept ? 40 : 10) == 0) added.push_back(o);
+    }
+    const std::uint64_t expected_size = ref.size() + added.size() - removed.size();
+    const std::uint32_t declared =
+        static_cast<std::uint32_t>(expected_size + (rng() % 10 == 0 ? 1 : 0));
+    const std::vector<unsigned char> lists = diff_lists(removed, added);
+    detail::DiffHeader d{};
+    d.removed = static_cast<std::uint32_t>(removed.size());
+    d.added = static_cast<std::uint32_t>(added.size());
+    d.lists = lists.data();
+    d.end = lists.data() + lists.size();
+    std::vector<std::uint32_t> out(ref.size() + added.size() + 4);
+    std::size_t n = 0;
+    bool want = detail::merge_decoded(d, ref.data(), ref.size(), out.data(), out.size(), n) &&
+                n == declared;
+    for (std::size_t i = 0; want && i < n; ++i)
+      want = out[i] < objects && (i == 0 || out[i] > out[i - 1]);
+    ASSERT_EQ(detail::check_diff(d, declared, ref.data(), ref.size(), objects), want)
+        << "trial " << trial;
+    (want ? accepted : refused)++;
+  }
+  // Both outcomes are common, so the comparison means something.
+  EXPECT_GT(accepted, 1000);
+  EXPECT_GT(refused, 1000);
 }
 
 }  // namespace

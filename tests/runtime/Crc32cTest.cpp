@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -47,6 +48,26 @@ TEST(Crc32c, MatchesBitwiseReferenceAtEveryLengthAndAlignment) {
           << start << " " << n;
     }
   }
+}
+
+TEST(Crc32c, PortableAndDispatchedPathsAgree) {
+  // crc32c() takes the CPU instruction where there is one; the tables must give the same bits.
+  std::mt19937 rng(11);
+  std::vector<unsigned char> data(1000);
+  for (auto& b : data) b = static_cast<unsigned char>(rng());
+  for (std::size_t start = 0; start < 9; ++start) {
+    for (std::size_t n = 0; start + n <= data.size(); n += 13) {
+      const std::uint32_t seed = static_cast<std::uint32_t>(rng());
+      ASSERT_EQ(crc32c(data.data() + start, n, seed),
+                urbanpvs::runtime::detail::crc32c_portable(data.data() + start, n, seed))
+          << start << " " << n;
+      ASSERT_EQ(urbanpvs::runtime::detail::crc32c_portable(data.data() + start, n),
+                reference_crc32c(data.data() + start, n));
+    }
+  }
+  std::printf("crc32c uses %s\n", urbanpvs::runtime::detail::crc32c_is_hardware()
+                                      ? "the CPU's CRC-32C instruction"
+                                      : "tables (no CRC-32C instruction)");
 }
 
 TEST(Crc32c, Continues) {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The committed files of every format version (v1_0.pvs, v2_0.pvs: the same bake) must decode
+// The committed files of every format version (v1_0.pvs, v2_0.pvs: the same bake; v2_1.pvs adds
+// payloads) must decode
 // forever to the values written below (not regenerated from the decoder), and the encoder must
 // still produce exactly their bytes when asked for that version.
 #include <gtest/gtest.h>
@@ -13,8 +14,16 @@ namespace {
 
 namespace rt = urbanpvs::runtime;
 
-std::string golden_path(std::uint16_t major) {
-  return std::string(URBANPVS_RUNTIME_GOLDEN_DIR) + "/v" + std::to_string(major) + "_0.pvs";
+/// A committed golden file: its version, and the bake behind it.
+struct Version {
+  std::uint16_t major;
+  std::uint16_t minor;
+  std::string name() const { return "v" + std::to_string(major) + "_" + std::to_string(minor); }
+  bool payloads() const { return major == 2 && minor == 1; }
+};
+
+std::string golden_path(const Version& v) {
+  return std::string(URBANPVS_RUNTIME_GOLDEN_DIR) + "/" + v.name() + ".pvs";
 }
 
 std::vector<std::uint32_t> pvs(const rt::PvsFile& file, std::uint32_t cell) {
@@ -23,22 +32,25 @@ std::vector<std::uint32_t> pvs(const rt::PvsFile& file, std::uint32_t cell) {
   return {decoder.begin(), decoder.end()};
 }
 
-class Golden : public ::testing::TestWithParam<std::uint16_t> {};
+class Golden : public ::testing::TestWithParam<Version> {};
 
 TEST_P(Golden, DecodesToTheRecordedContent) {
-  const std::uint16_t major = GetParam();
+  const Version version = GetParam();
+  const std::uint16_t major = version.major;
   rt::PvsFile file;
   rt::LoadError error;
   rt::LoadOptions options;
-  options.expand_pvs = major == 2;  // both query paths, on one version each
-  ASSERT_EQ(rt::PvsFile::open_file(golden_path(major).c_str(), file, options, &error),
+  options.expand_pvs = major == 2 && version.minor == 0;  // both query paths
+  ASSERT_EQ(rt::PvsFile::open_file(golden_path(version).c_str(), file, options, &error),
             rt::Status::kOk)
       << error.detail;
   EXPECT_EQ(file.major_version(), major);
-  EXPECT_EQ(file.minor_version(), 0);
-  // 1.x: metadata, objects, cells, grid, pvs. 2.x: the grid is built at load.
-  const std::vector<std::uint32_t> ids = major == 1 ? std::vector<std::uint32_t>{1, 2, 3, 4, 5}
-                                                    : std::vector<std::uint32_t>{1, 2, 3, 5};
+  EXPECT_EQ(file.minor_version(), version.minor);
+  // 1.x: metadata, objects, cells, grid, pvs. 2.x: the grid is built at load. 2.1: payloads.
+  const std::vector<std::uint32_t> ids =
+      major == 1 ? std::vector<std::uint32_t>{1, 2, 3, 4, 5}
+                 : (version.payloads() ? std::vector<std::uint32_t>{1, 2, 3, 5, 6}
+                                       : std::vector<std::uint32_t>{1, 2, 3, 5});
   ASSERT_EQ(file.section_count(), ids.size());
   for (std::uint32_t i = 0; i < ids.size(); ++i) EXPECT_EQ(file.section(i).id, ids[i]);
 
@@ -77,6 +89,14 @@ TEST_P(Golden, DecodesToTheRecordedContent) {
   EXPECT_EQ(o.source_id, "NL.IMBAG.Pand.1119");
   EXPECT_EQ(o.bbox, (rt::Bbox{84.0, 84.0, 0.0, 89.5, 88.25, 6.0}));
   EXPECT_EQ(file.object(120, o), rt::Status::kOutOfRange);
+  EXPECT_EQ(file.has_payloads(), version.payloads());
+  EXPECT_EQ(file.payload_key(), version.payloads() ? "tile" : "");
+  const std::pair<std::uint32_t, std::string_view> payloads[] = {
+      {0, "tiles/0/0.glb"}, {2, ""}, {23, "caf\xC3\xA9/23"}, {118, "tiles/9/10.glb"}, {119, ""}};
+  for (const auto& [index, payload] : payloads) {
+    ASSERT_EQ(file.object(index, o), rt::Status::kOk);
+    EXPECT_EQ(o.payload, version.payloads() ? payload : "") << index;
+  }
 
   ASSERT_EQ(file.cell_count(), 6u);
   struct Expected {
@@ -143,17 +163,18 @@ TEST_P(Golden, DecodesToTheRecordedContent) {
 }
 
 TEST_P(Golden, EncoderReproducesTheCommittedBytes) {
-  const urbanpvs::test::Bytes committed =
-      urbanpvs::test::read_bytes(golden_path(GetParam()).c_str());
+  const Version version = GetParam();
+  const urbanpvs::test::Bytes committed = urbanpvs::test::read_bytes(golden_path(version).c_str());
   ASSERT_FALSE(committed.empty());
-  EXPECT_EQ(rt::encode(urbanpvs::test::golden_bake(), urbanpvs::test::golden_options(GetParam())),
-            committed)
+  const rt::PvsBake bake = version.payloads() ? urbanpvs::test::golden_bake_with_payloads()
+                                              : urbanpvs::test::golden_bake();
+  EXPECT_EQ(rt::encode(bake, urbanpvs::test::golden_options(version.major)), committed)
       << "the encoder's output changed: a format change needs a new version and a new golden "
          "file (target update-golden), and the old file must keep decoding";
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryVersion, Golden,
-                         ::testing::Values(std::uint16_t{1}, std::uint16_t{2}),
-                         [](const auto& p) { return "v" + std::to_string(p.param) + "_0"; });
+                         ::testing::Values(Version{1, 0}, Version{2, 0}, Version{2, 1}),
+                         [](const auto& p) { return p.param.name(); });
 
 }  // namespace

@@ -73,6 +73,28 @@ TEST(Inspect, Cell) {
   EXPECT_FALSE(contains(r.out, "NL.IMBAG.Pand.1119")) << r.out;
 }
 
+TEST(Inspect, Payloads) {
+  // v2_1.pvs: the golden bake with a "tile" value for every object but each third (39 of 120:
+  // object 23 has one anyway).
+  const std::string v21 = std::string(URBANPVS_RUNTIME_GOLDEN_DIR) + "/v2_1.pvs";
+  Result r = inspect({v21});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "format:      2.1")) << r.out;
+  EXPECT_TRUE(contains(r.out, "payloads:    81 of 120 objects, from \"tile\"\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "payloads           1558 bytes")) << r.out;
+  r = inspect({v21, "--cell", "2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "3\tNL.IMBAG.Pand.1003\ttiles/0/3.glb\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "41\tNL.IMBAG.Pand.1041\n")) << r.out;  // 41 % 3 == 2: none
+  r = inspect({v21, "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(
+      contains(r.out, "{\"index\":23,\"id\":\"NL.IMBAG.Pand.1023\",\"payload\":\"caf\xC3\xA9/23\""))
+      << r.out;
+  EXPECT_FALSE(contains(inspect({kGolden}).out, "payloads:"));
+  EXPECT_FALSE(contains(inspect({kGolden, "--json"}).out, "\"payload\""));
+}
+
 TEST(Inspect, JsonDump) {
   const Result r = inspect({kGolden, "--json"});
   ASSERT_EQ(r.code, 0) << r.err;

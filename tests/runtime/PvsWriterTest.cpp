@@ -63,6 +63,27 @@ TEST(Writer, ValidatesTheBake) {
   b = bake();
   b.meta.properties.emplace_back("k", "\xED\xA0\x80");  // a UTF-16 surrogate
   expect_invalid(b, "metadata: property 2");
+  b = bake();
+  b.objects[9].payload = "tile";
+  expect_invalid(b, "object 9: payload given but no payload key");
+  b = urbanpvs::test::golden_bake_with_payloads();
+  EXPECT_EQ(rt::validate(b), "");
+  b.objects[10].payload = "\xC0\x80";  // overlong NUL
+  expect_invalid(b, "object 10: payload is not valid UTF-8");
+  b = urbanpvs::test::golden_bake_with_payloads();
+  b.payload_key = "\xFF";
+  expect_invalid(b, "payload key is not valid UTF-8");
+}
+
+TEST(Writer, PayloadsNeedVersion2) {
+  rt::EncodeOptions v1;
+  v1.format_major = 1;
+  try {
+    rt::encode(urbanpvs::test::golden_bake_with_payloads(), v1);
+    FAIL() << "a 1.0 file cannot hold payloads";
+  } catch (const rt::PvsWriteError& e) {
+    EXPECT_STREQ(e.what(), "object payloads need format 2.1 (format_major 2)");
+  }
 }
 
 TEST(Writer, Float32BboxesOutsideTheRangeAreRefused) {

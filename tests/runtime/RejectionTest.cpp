@@ -20,7 +20,7 @@ namespace rt = urbanpvs::runtime;
 using namespace urbanpvs::test;
 using rt::Status;
 
-enum Id : std::uint32_t { kMeta = 1, kObjects = 2, kCells = 3, kGrid = 4, kPvs = 5 };
+enum Id : std::uint32_t { kMeta = 1, kObjects = 2, kCells = 3, kGrid = 4, kPvs = 5, kPayloads = 6 };
 
 Bytes golden() {
   return rt::encode(golden_bake(), golden_options());
@@ -48,6 +48,16 @@ Bytes section_bytes(const Bytes& file, std::uint32_t id) {
   const SectionEntry e = section(file, id);
   return Bytes(file.begin() + static_cast<long>(e.offset),
                file.begin() + static_cast<long>(e.offset + e.length));
+}
+
+/// `file` with section `id` edited by `edit` (the checksums resealed).
+template <class Edit>
+Bytes with_section_edit(const Bytes& file, std::uint32_t id, Edit edit) {
+  Bytes s = section_bytes(file, id);
+  edit(s);
+  Bytes b = file;
+  replace_section(b, id, s);
+  return b;
 }
 
 /// A file from sections, written from FORMAT.md: version, features and extra header bytes free.
@@ -224,14 +234,7 @@ TEST(Rejection, SectionTableOverflowsAndInconsistencies) {
 
 TEST(Rejection, ObjectCountsOffsetsAndStrings) {
   const Bytes g = golden();
-  const Bytes objects = section_bytes(g, kObjects);
-  auto with = [&](auto edit) {
-    Bytes s = objects;
-    edit(s);
-    Bytes b = g;
-    replace_section(b, kObjects, s);
-    return b;
-  };
+  auto with = [&](auto edit) { return with_section_edit(g, kObjects, edit); };
   expect_malformed(with([](Bytes& s) { put_u32(s, 0, 0xFFFFFFFFu); }), Status::kMalformedSection,
                    kObjects);
   expect_malformed(with([](Bytes& s) { put_u32(s, 0, 121); }), Status::kMalformedSection, kObjects);
@@ -255,15 +258,36 @@ TEST(Rejection, ObjectCountsOffsetsAndStrings) {
                    Status::kMalformedSection, kObjects);
 }
 
+TEST(Rejection, PayloadCountsOffsetsAndText) {
+  // FORMAT.md "6 — payloads": u32 objects, u32 flags, string key ("tile": 4 + 4 bytes), then
+  // 121 u32 offsets from byte 16, then the payload text from byte 16 + 484.
+  const Bytes g = rt::encode(golden_bake_with_payloads(), golden_options(2));
+  ASSERT_EQ(load(g), Status::kOk);
+  auto with = [&](auto edit) { return with_section_edit(g, kPayloads, edit); };
+  expect_malformed(with([](Bytes& s) { put_u32(s, 0, 119); }), Status::kMalformedSection,
+                   kPayloads);
+  expect_malformed(with([](Bytes& s) { put_u32(s, 4, 1); }), Status::kMalformedSection, kPayloads);
+  expect_malformed(with([](Bytes& s) { put_u32(s, 8, 0xFFFFFFF0u); }), Status::kMalformedSection,
+                   kPayloads);
+  expect_malformed(with([](Bytes& s) { s[12] = std::byte{0xFF}; }), Status::kMalformedSection,
+                   kPayloads);  // the key is not UTF-8
+  expect_malformed(with([](Bytes& s) { put_u32(s, 16, 1); }), Status::kMalformedSection,
+                   kPayloads);  // the first offset is not 0
+  expect_malformed(with([](Bytes& s) { put_u32(s, 20, 0xFFFFFFF0u); }), Status::kMalformedSection,
+                   kPayloads);  // an offset past the text
+  expect_malformed(with([](Bytes& s) { put_u32(s, 16 + 4 * 120, 3); }), Status::kMalformedSection,
+                   kPayloads);  // the last offset does not end the section
+  expect_malformed(with([](Bytes& s) { put_u32(s, 24, 2); }), Status::kMalformedSection,
+                   kPayloads);  // offsets decrease (object 1 ends before it starts)
+  expect_malformed(with([](Bytes& s) { s[16 + 484] = std::byte{0xC0}; }), Status::kMalformedSection,
+                   kPayloads);  // the first payload is not UTF-8
+  expect_malformed(with([](Bytes& s) { s.push_back(std::byte{0}); }), Status::kMalformedSection,
+                   kPayloads);  // trailing bytes in a file of this reader's version
+}
+
 TEST(Rejection, MetadataCellsAndGrid) {
   const Bytes g = golden();
-  auto with = [&](std::uint32_t id, auto edit) {
-    Bytes s = section_bytes(g, id);
-    edit(s);
-    Bytes b = g;
-    replace_section(b, id, s);
-    return b;
-  };
+  auto with = [&](std::uint32_t id, auto edit) { return with_section_edit(g, id, edit); };
   expect_malformed(with(kMeta, [](Bytes& s) { put_u32(s, 4, 0xFFFFFFFFu); }),
                    Status::kMalformedSection, kMeta);
   expect_malformed(with(kMeta, [](Bytes& s) { s[8] = std::byte{0xFF}; }), Status::kMalformedSection,

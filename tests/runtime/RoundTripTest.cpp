@@ -80,7 +80,9 @@ std::vector<std::array<std::uint32_t, 3>> neighbours_by_rule(const rt::PvsFile& 
 void expect_same(const rt::PvsBake& bake, const rt::PvsFile& file, bool float32) {
   ASSERT_TRUE(file.is_open());
   const bool v1 = file.major_version() == 1;
-  EXPECT_EQ(file.minor_version(), 0);
+  EXPECT_EQ(file.minor_version(), bake.payload_key.empty() ? 0 : 1);
+  EXPECT_EQ(file.has_payloads(), !bake.payload_key.empty());
+  EXPECT_EQ(file.payload_key(), bake.payload_key);
   const auto rule = v1 ? std::vector<std::array<std::uint32_t, 3>>{} : neighbours_by_rule(file);
   const rt::FrameInfo f = file.frame();
   EXPECT_EQ(f.crs, bake.meta.frame.crs);
@@ -108,6 +110,7 @@ void expect_same(const rt::PvsBake& bake, const rt::PvsFile& file, bool float32)
     rt::ObjectInfo o;
     ASSERT_EQ(file.object(i, o), rt::Status::kOk);
     EXPECT_EQ(o.source_id, bake.objects[i].source_id);
+    EXPECT_EQ(o.payload, bake.objects[i].payload);
     expect_bbox(o.bbox, bake.objects[i].bbox, float32);
   }
   ASSERT_EQ(file.cell_count(), bake.cells.size());
@@ -191,12 +194,16 @@ std::vector<Variant> variants() {
   Variant incoherent;
   incoherent.bake.coherence = 0.2;
   out.push_back(incoherent);
+  Variant payloads;  // 2.1
+  payloads.bake.payloads = true;
+  out.push_back(payloads);
   return out;
 }
 
 TEST(RoundTrip, RandomBakesManySeedsAndOptions) {
   std::vector<Variant> all = variants();
   for (std::size_t v = 0, n = all.size(); v < n; ++v) {  // every variant in both versions
+    if (all[v].bake.payloads) continue;                  // (payloads need 2.1)
     all.push_back(all[v]);
     all.back().encode.format_major = 1;
   }
@@ -260,7 +267,7 @@ TEST(RoundTrip, Version2DerivesTheNeighboursOfAMesh) {
 
 TEST(RoundTrip, StackedCellsAreNotNeighboursOfEachOther) {
   rt::PvsBake bake;
-  bake.objects.resize(2, {"o", {0, 0, 0, 1, 1, 1}});
+  bake.objects.resize(2, {"o", {0, 0, 0, 1, 1, 1}, {}});
   rt::CellRecord cell;
   cell.triangle = {rt::Point2{0, 0}, {4, 0}, {0, 4}};
   cell.z_max = 2;
@@ -294,7 +301,7 @@ TEST(RoundTrip, EmptyBake) {
 TEST(RoundTrip, SingleCellEmptyAndFullPvs) {
   for (bool full : {false, true}) {
     rt::PvsBake bake;
-    bake.objects.resize(70, {"o", {0, 0, 0, 1, 1, 1}});
+    bake.objects.resize(70, {"o", {0, 0, 0, 1, 1, 1}, {}});
     rt::CellRecord cell;
     cell.triangle = {rt::Point2{0, 0}, {5, 0}, {0, 5}};
     cell.z_min = 0;
@@ -315,7 +322,7 @@ TEST(RoundTrip, SingleCellEmptyAndFullPvs) {
 
 TEST(RoundTrip, ExtremeObjectIndices) {
   rt::PvsBake bake;
-  bake.objects.resize(1u << 18, {"", {0, 0, 0, 0, 0, 0}});
+  bake.objects.resize(1u << 18, {"", {0, 0, 0, 0, 0, 0}, {}});
   rt::CellRecord cell;
   cell.triangle = {rt::Point2{0, 0}, {1, 0}, {0, 1}};
   cell.pvs = {0, 1, (1u << 17), (1u << 18) - 2, (1u << 18) - 1};

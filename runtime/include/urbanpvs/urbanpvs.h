@@ -115,6 +115,14 @@ urbanpvs_status urbanpvs_pvs_span(const urbanpvs_file* file, uint32_t cell, cons
 urbanpvs_status urbanpvs_object(const urbanpvs_file* file, uint32_t object, const char** id,
                                 size_t* id_size, double bbox[6]);
 
+/* The user's value for an object (from the attribute or tag named when baking; pointer into the
+ * file, UTF-8, not NUL-terminated): size 0 when it has none or the file has no payloads. */
+urbanpvs_status urbanpvs_object_payload(const urbanpvs_file* file, uint32_t object,
+                                        const char** payload, size_t* size);
+
+/* The attribute or tag the payloads came from (size 0 when the file has none). */
+void urbanpvs_payload_key(const urbanpvs_file* file, const char** key, size_t* size);
+
 /* Triangle (x0, y0, x1, y1, x2, y2; local frame), z range (min, max) and neighbours of a cell
  * (neighbour i across the edge from vertex i to vertex i+1, or URBANPVS_NO_CELL). Any output
  * may be NULL. */

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Regenerates tests/runtime/golden/v1_0.pvs and the fuzz seed corpus (target update-golden).
+// Regenerates tests/runtime/golden/v*.pvs and the fuzz seed corpus (target update-golden).
 // Run it only when the format changes on purpose: a new version gets a NEW golden file, and the
 // old ones stay, decoded forever by GoldenTest.cpp.
 //
@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
         rt::encode(urbanpvs::test::golden_bake(), urbanpvs::test::golden_options(2));
     rt::write_file_atomic(golden + "/v2_0.pvs", golden_v2);
     rt::write_file_atomic(corpus + "/golden_v2.pvs", golden_v2);
+    const auto golden_v21 =
+        rt::encode(urbanpvs::test::golden_bake_with_payloads(), urbanpvs::test::golden_options(2));
+    rt::write_file_atomic(golden + "/v2_1.pvs", golden_v21);
+    rt::write_file_atomic(corpus + "/golden_v2_1.pvs", golden_v21);
     // Seeds: small files covering every section feature, so mutations start from valid input.
     rt::write_file_atomic(corpus + "/golden.pvs", golden_bytes);
     rt::write_file_atomic(corpus + "/empty.pvs", rt::encode(rt::PvsBake{}));
@@ -50,6 +54,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;
   }
-  std::printf("wrote %s/v1_0.pvs, v2_0.pvs and the seeds in %s\n", golden.c_str(), corpus.c_str());
+  std::printf("wrote %s/v1_0.pvs, v2_0.pvs, v2_1.pvs and the seeds in %s\n", golden.c_str(),
+              corpus.c_str());
   return 0;
 }

@@ -29,7 +29,8 @@ runtime::PvsBake golden_bake() {
     const double x = (i % 12) * 8.0 - 4.0;
     const double y = (i / 12) * 8.0 + 12.0;
     bake.objects.push_back({"NL.IMBAG.Pand." + std::to_string(1000 + i),
-                            {x, y, 0.0, x + 5.5, y + 4.25, 6.0 + (i % 7)}});
+                            {x, y, 0.0, x + 5.5, y + 4.25, 6.0 + (i % 7)},
+                            {}});
   }
   // Cells: a strip of 6 triangles over [0, 30] x [0, 10], counter-clockwise; neighbour k is
   // across the edge from vertex k to vertex k + 1.
@@ -50,6 +51,20 @@ runtime::PvsBake golden_bake() {
   }
   bake.cells[4].pvs.assign(bake.cells[3].pvs.begin() + 1, bake.cells[3].pvs.end());  // diff: -0
   bake.cells[5].pvs = {7, 38};
+  return bake;
+}
+
+std::string golden_payload(std::uint32_t object) {
+  if (object == 23) return "caf\xC3\xA9/23";
+  if (object % 3 == 2) return {};
+  return "tiles/" + std::to_string(object / 12) + "/" + std::to_string(object % 12) + ".glb";
+}
+
+runtime::PvsBake golden_bake_with_payloads() {
+  runtime::PvsBake bake = golden_bake();
+  bake.payload_key = "tile";
+  for (std::uint32_t i = 0; i < bake.objects.size(); ++i)
+    bake.objects[i].payload = golden_payload(i);
   return bake;
 }
 

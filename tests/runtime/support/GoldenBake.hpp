@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
-// The bake behind tests/runtime/golden/v1_0.pvs. Changing it changes the golden file: the
-// golden test compares the decoded file with values written out in the test itself, and the
-// encoder's output with the committed bytes.
+// The bake behind tests/runtime/golden/v1_0.pvs, v2_0.pvs and v2_1.pvs. Changing it changes the
+// golden file: the golden test compares the decoded file with values written out in the test
+// itself, and the encoder's output with the committed bytes.
+
+#include <cstdint>
+#include <string>
 
 #include "urbanpvs/runtime/PvsWriter.hpp"
 
@@ -13,9 +16,15 @@ namespace urbanpvs::test {
 /// list, a delta list, a dense bitset, and diffs.
 runtime::PvsBake golden_bake();
 
-/// The options the golden file was encoded with. Explicit, so that tuning the writer's default
-/// heuristics does not change the golden bytes (diff_threshold 1: cells 2 and 4 are diffs).
-/// The options of the golden file of format `major` (tests/runtime/golden/v1_0.pvs, v2_0.pvs).
+/// golden_bake() with a payload per object (key "tile"; every third object none, one value
+/// with non-ASCII text): the content of v2_1.pvs.
+runtime::PvsBake golden_bake_with_payloads();
+/// The payload golden_bake_with_payloads() gives object `object`.
+std::string golden_payload(std::uint32_t object);
+
+/// The options the golden files of format `major` were encoded with. Explicit, so that tuning
+/// the writer's default heuristics does not change the golden bytes (diff_threshold 1: cells 2
+/// and 4 are diffs).
 runtime::EncodeOptions golden_options(std::uint16_t major = 1);
 
 }  // namespace urbanpvs::test

@@ -33,8 +33,8 @@ void fill_objects(PvsBake& bake, std::mt19937_64& rng, std::uint32_t count, doub
   bake.objects.resize(count);
   for (std::uint32_t i = 0; i < count; ++i) {
     const double x = pos(rng), y = pos(rng);
-    bake.objects[i] = {"obj." + std::to_string(i),
-                       {x, y, 0, x + size(rng), y + size(rng), height(rng)}};
+    bake.objects[i] = {
+        "obj." + std::to_string(i), {x, y, 0, x + size(rng), y + size(rng), height(rng)}, {}};
   }
 }
 
@@ -144,6 +144,13 @@ PvsBake random_mesh_bake(std::uint64_t seed, const RandomBakeOptions& o) {
     }
   }
   fill_pvs(bake, rng, o);
+  if (o.payloads) {  // drawn last, so the rest of the bake does not depend on it
+    bake.payload_key = "mesh";
+    for (std::uint32_t i = 0; i < bake.objects.size(); ++i) {
+      if (rng() % 4 == 0) continue;
+      bake.objects[i].payload = "m/" + std::to_string(rng() % 100000) + (i % 7 ? "" : "\xC3\xA9");
+    }
+  }
   return bake;
 }
 

@@ -21,6 +21,7 @@ struct RandomBakeOptions {
   double coherence = 0.9;        ///< fraction of a parent cell's PVS a cell keeps
   bool neighbours = true;        ///< fill neighbour links (else all kNoCell)
   bool properties = true;        ///< add metadata properties
+  bool payloads = false;         ///< give most objects a payload (key "mesh"): a 2.1 file
 };
 
 /// Deterministic for a given seed and options.

@@ -64,7 +64,7 @@ void add_buildings(PvsBake& bake, std::vector<Building>& buildings, const Synthe
     const bool landmark = u(rng) < o.landmark_fraction;
     const double height = landmark ? 60 + 90 * u(rng) : 6 + 30 * u(rng) * u(rng);
     bake.objects.push_back(
-        {"bldg." + std::to_string(i), {x - w / 2, y - d / 2, 0, x + w / 2, y + d / 2, height}});
+        {"bldg." + std::to_string(i), {x - w / 2, y - d / 2, 0, x + w / 2, y + d / 2, height}, {}});
     buildings.push_back({x, y, 0.7 + height / 60.0, landmark});
   }
 }

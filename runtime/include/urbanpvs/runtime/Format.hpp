@@ -18,12 +18,13 @@ inline constexpr unsigned char kMagic[8] = {0x89, 'U', 'P', 'V', 'S', '\r', '\n'
 /// kOldestMajorVersion to kMajorVersion, each with any minor version, unless the file sets
 /// required-feature bits the reader does not know (kKnownRequiredFeatures).
 /// 1.0: cells as float64 records, a stored point-location grid. 2.0: cells as an indexed mesh of
-/// quantized vertices, the grid built at load.
+/// quantized vertices, the grid built at load. 2.1: adds the optional payloads section; the
+/// writer marks a file 2.1 only when it has one, so other files stay 2.0 byte for byte.
 inline constexpr std::uint16_t kMajorVersion = 2;
-inline constexpr std::uint16_t kMinorVersion = 0;
+inline constexpr std::uint16_t kMinorVersion = 1;
 inline constexpr std::uint16_t kOldestMajorVersion = 1;
 
-/// The newest minor version this reader knows of `major` (1.0 and 2.0 so far). Bytes appended
+/// The newest minor version this reader knows of `major` (1.0 and 2.1 so far). Bytes appended
 /// to known structures are tolerated only in files of a newer minor version.
 constexpr std::uint16_t latest_minor(std::uint16_t major) noexcept {
   return major == 1 ? 0 : kMinorVersion;
@@ -49,6 +50,7 @@ enum class SectionId : std::uint32_t {
   kCells = 3,
   kGrid = 4,  ///< 1.x only; 2.x builds the grid from the cells
   kPvs = 5,
+  kPayloads = 6,  ///< 2.1, optional: a user value per object (a mesh or tile key)
 };
 
 /// Short lower-case name of a section id ("metadata", "objects", ...; "unknown" otherwise).

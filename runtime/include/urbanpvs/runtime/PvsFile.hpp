@@ -57,6 +57,9 @@ struct LoadOptions {
 struct ObjectInfo {
   std::string_view source_id;  ///< points into the file's buffer; valid while the file is open
   Bbox bbox{};
+  /// The user's value for it (payload_key()), UTF-8, pointing into the buffer; empty when the
+  /// object has none or the file has no payloads section (before 2.1).
+  std::string_view payload;
 };
 
 /// The coordinate frame of the file. Stored coordinates are local = input − origin; for a
@@ -153,6 +156,10 @@ class PvsFile {
   std::uint32_t cell_count() const noexcept;
   /// Object `index`; kOutOfRange when index >= object_count().
   Status object(std::uint32_t index, ObjectInfo& out) const noexcept;
+  /// Whether the file carries a payload per object (a 2.1 payloads section).
+  bool has_payloads() const noexcept;
+  /// The attribute or tag the payloads came from ("" without payloads); points into the buffer.
+  std::string_view payload_key() const noexcept;
   /// Cell `index`; kOutOfRange when index >= cell_count().
   Status cell(std::uint32_t index, CellGeometry& out) const noexcept;
 

@@ -39,6 +39,8 @@ struct Metadata {
 struct ObjectRecord {
   std::string source_id;  ///< id in the input (e.g. "NL.IMBAG.Pand.0503100000012345"), UTF-8
   Bbox bbox{};            ///< local frame, finite, min <= max per axis
+  /// The user's value for this object (PvsBake::payload_key), UTF-8; empty when it has none.
+  std::string payload;
 };
 
 /// A view cell and its PVS. Its index is its position in PvsBake::cells.
@@ -57,6 +59,9 @@ struct PvsBake {
   Metadata meta;
   std::vector<ObjectRecord> objects;  ///< fewer than 2^32 - 1
   std::vector<CellRecord> cells;      ///< fewer than 2^32 - 1
+  /// The attribute or tag the objects' payloads came from (UTF-8). Non-empty: the file gets a
+  /// payloads section and is version 2.1 (format_major 2 only); empty: every payload must be.
+  std::string payload_key;
 };
 
 /// Encoding choices. The defaults are the measured best trade-off (see runtime/README.md).

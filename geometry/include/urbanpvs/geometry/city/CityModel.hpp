@@ -55,6 +55,9 @@ struct Surface3 {
 struct CityObject {
   std::uint32_t index = 0;  ///< stable: position in City::objects, in input order
   std::string source_id;    ///< CityJSON key, GeoJSON id / properties.id / @type/@id, or #<n>
+  /// The value of the input's attribute, property or tag ReadOptions::payload_key names: a
+  /// string as given, a number or boolean as JSON text; empty when it has none.
+  std::string payload;
   std::vector<Polygon> footprint;        ///< ground footprint of every part reaching the ground
   double ground_z = 0;                   ///< lowest point of the object
   Box3 bbox;                             ///< of all its geometry, parts above the ground included
@@ -131,6 +134,8 @@ struct City {
   StreetNetwork streets;
   ReadReport report;
   std::vector<std::string> sources;  ///< files read, in order
+  /// ReadOptions::payload_key the objects' payloads were read with (empty: none).
+  std::string payload_key;
 
   Box3 bounds() const {
     Box3 b;

@@ -32,6 +32,10 @@ struct ReadOptions {
   /// The largest plausible extent of a city (either side of its bounding rectangle); larger
   /// input is refused (InputError(Implausible)) rather than baked for hours. [Units: m]
   double max_extent = 300000.0;
+  /// The attribute (CityJSON), property (GeoJSON) or tag (OpenStreetMap) whose value each
+  /// object carries as its payload (CityObject::payload): a key a renderer finds its mesh or
+  /// tile by. Empty: no payloads.
+  std::string payload_key;
 };
 
 /// Reads every file into one city (all files must share one coordinate reference system).

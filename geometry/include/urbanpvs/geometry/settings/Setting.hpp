@@ -30,6 +30,7 @@ enum class SettingKind {
   Choice,   ///< one of `choices`
   Band,     ///< "MIN:MAX" in the unit, min <= MIN <= MAX <= max
   Path,     ///< a file name; in a --config file relative to the config
+  Text,     ///< a name taken as given ("none": no name)
 };
 
 /// The shortest text that reads back to the same double: equal settings give equal text (and so
@@ -83,6 +84,7 @@ struct Setting {
       }
       case SettingKind::Flag:
       case SettingKind::Path:
+      case SettingKind::Text:
         break;
     }
     return "";
@@ -234,6 +236,23 @@ Setting<Target> path_setting(std::string key, SettingStage stage, std::string he
     return v.empty() ? std::string("none") : v;
   };
   s.set = [field](Target& t, const std::string& text) { field(t) = text; };
+  return s;
+}
+
+/// A name (an attribute, a tag): empty, shown and given as "none", when there is none.
+template <typename Target>
+Setting<Target> text_setting(std::string key, SettingStage stage, std::string help,
+                             std::function<std::string&(Target&)> field) {
+  auto s =
+      setting_detail::base<Target>(std::move(key), "", stage, SettingKind::Text, std::move(help));
+  s.get = [field](const Target& t) {
+    const std::string& v = field(const_cast<Target&>(t));
+    return v.empty() ? std::string("none") : v;
+  };
+  s.set = [field, key = s.key](Target& t, const std::string& text) {
+    if (text.empty()) setting_detail::refuse(key, "expects a name (or none)", text);
+    field(t) = text == "none" ? std::string() : text;
+  };
   return s;
 }
 

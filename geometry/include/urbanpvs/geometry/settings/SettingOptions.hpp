@@ -31,6 +31,8 @@ std::string option_type_name(const Setting<Target>& s) {
       return "MIN:MAX";
     case SettingKind::Path:
       return "FILE";
+    case SettingKind::Text:
+      return "NAME";
     case SettingKind::Flag:
       break;
   }

@@ -47,8 +47,9 @@ struct BakeReport {
   /// Each rank's share in an MPI job (DistributedBake.hpp); empty for a run of one process.
   std::vector<RankShare> ranks;
   std::size_t objects = 0, blocks = 0, occluders = 0, cells = 0;
-  /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding).
-  std::vector<std::string> repairs, non_occluding;
+  /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding),
+  /// and what it warns of (ReadReport::warnings).
+  std::vector<std::string> repairs, non_occluding, warnings;
   std::size_t cells_computed = 0;      ///< by this run
   std::size_t cells_from_journal = 0;  ///< taken from a resumed journal
   std::uint64_t pvs_entries = 0;       ///< sum of PVS sizes over all cells
