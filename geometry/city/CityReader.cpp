@@ -27,9 +27,10 @@ std::string payload_of(const Json& attributes, const std::string& key) {
   if (key.empty() || !attributes.is_object()) return {};
   const auto it = attributes.find(key);
   if (it == attributes.end() || it->is_null()) return {};
-  // Invalid UTF-8 in the input is replaced, so that the PVS file's payloads stay UTF-8.
-  return it->is_string() ? it->get<std::string>()
-                         : it->dump(-1, ' ', false, Json::error_handler_t::replace);
+  // The PVS file's payloads must be UTF-8, but OSM PBF tags are not checked by libosmium (JSON
+  // input is, by the parser): invalid bytes become U+FFFD, by nlohmann's own dump.
+  const std::string text = it->dump(-1, ' ', false, Json::error_handler_t::replace);
+  return it->is_string() ? Json::parse(text).get<std::string>() : text;
 }
 
 double json_number(const Json& v, const std::string& file, const std::string& feature,

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "urbanpvs/geometry/city/ReadSettings.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace urbanpvs::geometry {
 namespace {
 
@@ -44,11 +46,21 @@ SettingTable<ReadOptions> make_table() {
                                 "Tallest plausible building: taller input is refused; buildings "
                                 "of unknown height are tested up to it",
                                 [](R& r) -> double& { return r.max_height; }));
-  t.push_back(text_setting<R>(
+  auto payload = text_setting<R>(
       "payload", S::Read,
       "Attribute (CityJSON), property (GeoJSON) or tag (OSM) whose value each object carries "
       "into the PVS file, e.g. a mesh or tile key",
-      [](R& r) -> std::string& { return r.payload_key; }));
+      [](R& r) -> std::string& { return r.payload_key; });
+  // The name is stored in the file, which holds only UTF-8: refuse it here, not after a bake.
+  payload.set = [set = payload.set, key = payload.key](R& r, const std::string& text) {
+    try {
+      (void)nlohmann::json(text).dump();
+    } catch (const nlohmann::json::type_error&) {
+      setting_detail::refuse(key, "expects a name in UTF-8", text);
+    }
+    set(r, text);
+  };
+  t.push_back(std::move(payload));
   return t;
 }
 

@@ -15,6 +15,13 @@
 #define URBANPVS_NOINLINE
 #endif
 
+/// A hint to start loading the cache line at `address` (no effect where unsupported).
+#if defined(__GNUC__) || defined(__clang__)
+#define URBANPVS_PREFETCH(address) __builtin_prefetch(address)
+#else
+#define URBANPVS_PREFETCH(address) ((void)(address))
+#endif
+
 namespace urbanpvs::runtime::detail {
 
 /// Index of the lowest set bit; `v` must be non-zero.

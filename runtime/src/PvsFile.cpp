@@ -7,6 +7,7 @@
 #include <new>
 #include <utility>
 
+#include "Bits.hpp"
 #include "ByteReader.hpp"
 #include "PvsFileData.hpp"
 #include "urbanpvs/runtime/FileIo.hpp"
@@ -26,6 +27,9 @@ std::uint32_t locate_in(const detail::PvsFileData& f, double x, double y, double
       detail::grid_coordinate(x, g.origin_x, g.size_x, g.nx);
   const std::uint32_t* e = f.grid.entries.data() + f.grid.offsets[grid_cell];
   const std::uint32_t* const end = f.grid.entries.data() + f.grid.offsets[grid_cell + 1];
+  // The candidates are scattered over the cell table: ask for all of them at once, so their
+  // cache misses overlap instead of following one another (random queries are memory bound).
+  for (const std::uint32_t* p = e; p != end; ++p) URBANPVS_PREFETCH(&f.cells.shapes[*p]);
   for (; e != end; ++e) {
     const detail::CellShape& shape = f.cells.shapes[*e];
     if (check_z && !(z >= shape.z_min && z <= shape.z_max)) continue;

@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/ReadSettings.hpp"
 
 namespace {
 
@@ -110,6 +112,30 @@ TEST(Payload, ValuesOfEveryJsonType) {
   EXPECT_EQ(got.at("b"), "true");
   EXPECT_EQ(got.at("o"), R"({"lod":[1,2]})");
   EXPECT_EQ(got.at("z"), "");
+}
+
+TEST(Payload, InvalidUtf8InATagBecomesReplacementCharacters) {
+  // OSM PBF tag values reach the reader unchecked (JSON files are checked by the parser).
+  urbanpvs::geometry::detail::Json tags = {{"ref", "a\xFFz"}, {"n", 3}};
+  EXPECT_EQ(urbanpvs::geometry::detail::payload_of(tags, "ref"), "a\xEF\xBF\xBDz");
+  EXPECT_EQ(urbanpvs::geometry::detail::payload_of(tags, "n"), "3");
+  EXPECT_EQ(urbanpvs::geometry::detail::payload_of(tags, ""), "");
+}
+
+TEST(Payload, TheKeyMustBeUtf8) {
+  const Setting<ReadOptions>* s = find_setting(read_settings(), "payload");
+  ASSERT_NE(s, nullptr);
+  ReadOptions options;
+  s->set(options, "ref:tile");
+  EXPECT_EQ(options.payload_key, "ref:tile");
+  s->set(options, "none");
+  EXPECT_EQ(options.payload_key, "");
+  try {
+    s->set(options, "bad\xFF");
+    FAIL() << "a name that is not UTF-8 was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--payload expects a name in UTF-8, got \"bad\xFF\"");
+  }
 }
 
 }  // namespace
