@@ -7,8 +7,9 @@
 ///
 /// Safety on untrusted input: open() validates everything before it reports kOk — header,
 /// section table, checksums (unless disabled in LoadOptions), every count and offset against the
-/// buffer (64-bit, overflow-checked), every string as UTF-8, every cell's PVS encoding (decoded
-/// once, checked sorted, in range and within the diff-chain bound) and the point-location grid
+/// buffer (64-bit, overflow-checked), every string as UTF-8, every cell's PVS encoding (checked
+/// to decode sorted, in range and within the diff-chain bound: each full list is decoded once,
+/// each diff checked against its reference) and the point-location grid
 /// (checked to be exactly the one the writer builds). A buffer that passes never makes a later
 /// call read out of bounds; one that fails leaves `out` closed. Every function is noexcept and
 /// the library never aborts on bad input. The loader is fuzzed (tests/runtime/fuzz).
@@ -46,10 +47,10 @@ struct LoadOptions {
   /// structural validation behind the checksums (which always runs) or for files the caller
   /// has already verified; a corrupted but structurally valid file then loads with wrong data.
   bool verify_checksums = true;
-  /// Keep every cell's decoded PVS (the loader decodes each one to validate it anyway):
-  /// pvs_span() then returns it in place, and decode() and is_visible() read it without
-  /// decoding. Costs 4 bytes per PVS entry (total_pvs_entries()), what plain lists take: the
-  /// file stays small on disk and on the wire, and memory buys the fastest queries.
+  /// Decode every cell's PVS at load, after validating the file, and keep it: pvs_span() then
+  /// returns it in place, and decode() and is_visible() read it without decoding (loading
+  /// takes about 2-3 times as long). Costs 4 bytes per PVS entry (total_pvs_entries()), what plain
+  /// lists take: the file stays small on disk and on the wire, and memory buys the fastest queries.
   bool expand_pvs = false;
 };
 
