@@ -125,14 +125,7 @@ Latency time_queries(const rt::PvsFile& file, const std::vector<Point>& points) 
   rt::PvsDecoder decoder(file);
   std::vector<double> ns;
   ns.reserve(points.size());
-  std::vector<double> empty(2000);
-  for (double& e : empty) {
-    const auto t0 = Clock::now();
-    const auto t1 = Clock::now();
-    e = std::chrono::duration<double, std::nano>(t1 - t0).count();
-  }
-  std::nth_element(empty.begin(), empty.begin() + empty.size() / 2, empty.end());
-  const double overhead = empty[empty.size() / 2];
+  const double overhead = timer_overhead_ns();
   std::uint64_t sink = 0;
   for (int round = 0; round < 3; ++round) {  // the last round is kept: caches warm as in a game
     ns.clear();

@@ -127,15 +127,7 @@ void BM_Query(benchmark::State& state) {
   using clock = std::chrono::steady_clock;
   std::vector<double> ns;
   ns.reserve(points.size());
-  // Timer overhead: the median of empty timings.
-  std::vector<double> empty(2000);
-  for (double& e : empty) {
-    const auto t0 = clock::now();
-    const auto t1 = clock::now();
-    e = std::chrono::duration<double, std::nano>(t1 - t0).count();
-  }
-  std::nth_element(empty.begin(), empty.begin() + empty.size() / 2, empty.end());
-  const double overhead = empty[empty.size() / 2];
+  const double overhead = urbanpvs::bench::timer_overhead_ns();
   std::uint64_t sink = 0;
   for (auto _ : state) {
     ns.clear();

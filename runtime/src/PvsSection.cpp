@@ -121,7 +121,8 @@ struct PvsValidation {
 
   const PvsSection& section;
   std::uint32_t object_count;
-  std::vector<std::uint32_t> reference;    ///< per cell: its diff reference, or kNoCell
+  std::vector<std::uint32_t> reference;  ///< per cell: its diff reference, or kNoCell
+  std::vector<std::uint32_t> count;      ///< per cell: its header's PVS size (true after check_all)
   std::vector<std::uint32_t> first_child;  ///< cell_count + 1 offsets into `children`
   std::vector<std::uint32_t> children;
   std::size_t half = 1;                     ///< slots per level buffer (>= the largest PVS)
@@ -220,11 +221,7 @@ struct PvsValidation {
     const std::size_t n = reference.size();
     e.offsets.resize(n + 1);
     e.offsets[0] = 0;
-    for (std::uint32_t c = 0; c < n; ++c) {
-      PayloadHeader header;
-      read_payload_header(section, c, header);
-      e.offsets[c + 1] = e.offsets[c] + header.count;
-    }
+    for (std::uint32_t c = 0; c < n; ++c) e.offsets[c + 1] = e.offsets[c] + count[c];
     e.ids.resize(static_cast<std::size_t>(total));
     for (std::uint32_t cell = 0; cell < n; ++cell) {
       if (reference[cell] != kNoCell) continue;
@@ -309,6 +306,7 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
   out.total_entries = 0;
   PvsValidation v(s, object_count);
   v.reference.resize(count);
+  v.count.resize(count);
   for (std::uint32_t cell = 0; cell < count; ++cell) {
     PayloadHeader header;
     DiffHeader diff;
@@ -318,6 +316,7 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
       return false;
     }
     v.reference[cell] = header.kind == format::PvsKind::kDiff ? diff.reference : kNoCell;
+    v.count[cell] = header.count;
     out.max_pvs_size = std::max(out.max_pvs_size, header.count);
     out.total_entries += header.count;
   }
