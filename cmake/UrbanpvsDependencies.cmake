@@ -7,6 +7,7 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(GeographicLib REQUIRED IMPORTED_TARGET geographiclib)  # WGS84 -> local metric frame
 pkg_check_modules(OSMesa REQUIRED IMPORTED_TARGET osmesa)               # off-screen cull maps
 find_package(glm REQUIRED)                          # the 2D and 3D vector types
+find_package(GDAL 3.6 CONFIG REQUIRED)              # DEM rasters for --terrain (GeoTIFF, SRTM)
 
 # OpenStreetMap input (header-only libosmium; PBF needs zlib and threads, XML expat, .bz2 bzip2).
 find_path(OSMIUM_INCLUDE_DIR osmium/osm.hpp REQUIRED)

@@ -12,6 +12,8 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev
   # OpenStreetMap input (PBF and XML)
   libosmium2-dev
+  # terrain: DEMs (GeoTIFF, SRTM .hgt) read and reprojected with GDAL (--terrain)
+  libgdal-dev
   # coordinates: WGS84 lon/lat -> local metric frame
   libgeographiclib-dev
   # the 2D and 3D vector types of every builder stage

@@ -13,7 +13,7 @@ SvgMap::SvgMap(const Box2& view, double width_px) : view_(view) {
 
 std::string SvgMap::point(Vec2 p) const {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.2f,%.2f", (p.x - view_.min.x) * scale_,
+  std::snprintf(buf, sizeof buf, "%.1f,%.1f", (p.x - view_.min.x) * scale_,
                 (view_.max.y - p.y) * scale_);
   return buf;
 }
@@ -32,6 +32,14 @@ void SvgMap::polygon(const Polygon& p, const std::string& style) {
 void SvgMap::triangle(Vec2 a, Vec2 b, Vec2 c, const std::string& style) {
   body_ << "<path style=\"" << style << "\" d=\"M" << point(a) << "L" << point(b) << "L" << point(c)
         << "Z\"/>\n";
+}
+
+void SvgMap::triangles(const std::vector<std::array<Vec2, 3>>& ts, const std::string& style) {
+  if (ts.empty()) return;
+  body_ << "<path style=\"" << style << "\" d=\"";
+  for (const auto& t : ts)
+    body_ << "M" << point(t[0]) << "L" << point(t[1]) << "L" << point(t[2]) << "Z";
+  body_ << "\"/>\n";
 }
 
 void SvgMap::text(Vec2 at, const std::string& s, const std::string& style) {

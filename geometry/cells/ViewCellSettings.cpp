@@ -1,17 +1,57 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "urbanpvs/geometry/cells/ViewCellSettings.hpp"
 
+#include <filesystem>
+
 namespace urbanpvs::geometry {
+
+namespace {
+
+// everywhere | streets | FILE: a name that is neither keyword is the region's file, the same as
+// --region FILE.
+Setting<ViewCellOptions> cells_setting() {
+  using V = ViewCellOptions;
+  auto s = choice_setting<V::Placement, V>(
+      "cells", SettingStage::Cells, {"everywhere", "streets", "FILE"},
+      "Cells go into all free space near the buildings, only onto the streets, squares and paths "
+      "the input maps (OpenStreetMap highways by their width), or into the GeoJSON "
+      "(Multi)Polygons of FILE (the city's CRS; as --region FILE)",
+      [](V& v) -> V::Placement& { return v.placement; });
+  s.get = [](const V& v) {
+    switch (v.placement) {
+      case V::Placement::Everywhere:
+        return std::string("everywhere");
+      case V::Placement::Streets:
+        return std::string("streets");
+      case V::Placement::File:
+        break;
+    }
+    return v.region_file;
+  };
+  s.set = [key = s.key](V& v, const std::string& text) {
+    v.region_file.clear();
+    if (text == "everywhere") {
+      v.placement = V::Placement::Everywhere;
+    } else if (text == "streets") {
+      v.placement = V::Placement::Streets;
+    } else {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(text, ec))
+        setting_detail::refuse(key, "must be everywhere, streets or an existing region file", text);
+      v.placement = V::Placement::File;
+      v.region_file = text;
+    }
+  };
+  return s;
+}
+
+}  // namespace
 
 const SettingTable<ViewCellOptions>& view_cell_settings() {
   using S = SettingStage;
   using V = ViewCellOptions;
   static const SettingTable<V> table = {
-      choice_setting<V::Placement, V>(
-          "cells", S::Cells, {"everywhere", "streets"},
-          "Without --region, cells go into all free space near the buildings, or only onto the "
-          "streets, squares and paths the input maps (OpenStreetMap highways by their width)",
-          [](V& v) -> V::Placement& { return v.placement; }),
+      cells_setting(),
       number_setting<V>("epsilon", "m", S::Cells, 0.01, 1000,
                         "Occluder shrinking and sample spacing epsilon (thesis 7.2)",
                         [](V& v) -> double& { return v.epsilon; }),

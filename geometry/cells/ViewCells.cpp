@@ -100,6 +100,9 @@ ViewCellMesh build_view_cells(const City& city, const ViewCellOptions& options) 
     for (Ring& h : r.holes)
       if (signed_area2(h) > 0) std::reverse(h.begin(), h.end());
   }
+  if (options.placement == ViewCellOptions::Placement::File && mesh.options.region.empty())
+    throw std::invalid_argument("ViewCellOptions.placement: --cells " + options.region_file +
+                                ", but no region was read from it (read_region_file)");
   if (options.placement == ViewCellOptions::Placement::Streets) {
     if (!mesh.options.region.empty())
       throw std::invalid_argument(

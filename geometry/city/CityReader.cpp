@@ -11,6 +11,7 @@
 
 #include "BoxGrid.hpp"
 #include "CityReaders.hpp"
+#include "urbanpvs/geometry/city/DemTerrain.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
@@ -306,6 +307,29 @@ struct Reader {
     city.sources.push_back(name);
   }
 
+  // The DEM, resampled over the buildings and streets and kDemMargin around them; beyond that
+  // the ground model takes the height of the nearest TIN point.
+  void read_terrain(const std::string& name) {
+    constexpr double kDemMargin = 250;  // [Units: m] beyond any default view-cell region
+    Box2 area = city.bounds().xy;
+    for (const StreetLine& l : city.streets.lines)
+      for (Vec2 p : l.points) area.extend(p);
+    for (const Polygon& a : city.streets.areas) area.extend(bounds(a));
+    if (!city.terrain.empty())
+      city.report.warnings.push_back(options.terrain_path + " replaces the TINRelief of " + name);
+    DemSummary s;
+    city.terrain = read_dem_terrain(options.terrain_path, city.frame, area.grown(kDemMargin), &s);
+    char note[400];
+    std::snprintf(note, sizeof note,
+                  "%s (%s, %s, %d x %d pixels of %.1f x %.1f m), resampled every %.1f m: %d x %d "
+                  "nodes, %zu filled from neighbours, heights %.1f .. %.1f m",
+                  options.terrain_path.c_str(), s.driver.c_str(), s.crs.c_str(), s.raster_columns,
+                  s.raster_rows, s.pixel_x, s.pixel_y, s.spacing, s.columns, s.rows, s.filled,
+                  s.zmin, s.zmax);
+    city.report.terrain_note = note;
+    for (std::string& w : s.warnings) city.report.warnings.push_back(std::move(w));
+  }
+
   City finish(const std::string& name) {
     if (city.objects.empty())
       throw InputError(InputProblem::EmptyCity, name, "", "no building found");
@@ -318,6 +342,7 @@ struct Reader {
                     extent / 1000, options.max_extent);
       throw InputError(InputProblem::Implausible, name, "", what);
     }
+    if (!options.terrain_path.empty()) read_terrain(name);
     // After every file: the terrain may come after the buildings standing on it.
     if (!city.terrain.empty() &&
         std::find(relative.begin(), relative.end(), true) != relative.end())

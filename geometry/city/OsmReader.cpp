@@ -105,6 +105,7 @@ class AreaFeatures : public osmium::handler::Handler {
     }
     // An area the assembler could not build has no rings; its problems are reported already.
     if (polygons.empty()) return;
+    if (!a.from_way()) ++report_.osm_multipolygons;
     Json properties = Json::object();
     for (const osmium::Tag& t : a.tags()) properties[t.key()] = t.value();
     Json geometry = Json::object();

@@ -61,6 +61,13 @@ SettingTable<ReadOptions> make_table() {
     set(r, text);
   };
   t.push_back(std::move(payload));
+  auto terrain = path_setting<R>(
+      "terrain", S::Read,
+      "DEM raster (GeoTIFF, SRTM .hgt; read with GDAL) that GeoJSON/OSM buildings stand on and "
+      "view cells follow",
+      [](R& r) -> std::string& { return r.terrain_path; });
+  terrain.existing_file = true;
+  t.push_back(std::move(terrain));
   return t;
 }
 

@@ -68,11 +68,17 @@ void print_summary(const ViewCellMesh& m, double read_seconds) {
 }
 
 std::string svg_of(const City& city, const ViewCellMesh& m) {
+  // The region the cells were asked for (pale blue: the streets with --cells streets), the
+  // footprints (grey) and the cells over them (blue outlines).
   SvgMap map(m.bounds.grown(5));
+  for (const Polygon& r : m.options.region)
+    map.polygon(r, "fill:#dde8f4;stroke:#69c;stroke-width:0.5");
   for (const CityObject& o : city.objects)
     for (const Polygon& p : o.footprint) map.polygon(p, "fill:#bbb;stroke:none");
-  for (const ViewCell& c : m.cells)
-    map.triangle(c.corner[0], c.corner[1], c.corner[2], "fill:none;stroke:#036;stroke-width:0.2");
+  std::vector<std::array<Vec2, 3>> cells;
+  cells.reserve(m.cells.size());
+  for (const ViewCell& c : m.cells) cells.push_back(c.corner);
+  map.triangles(cells, "fill:none;stroke:#036;stroke-width:0.2");
   return map.str();
 }
 
@@ -102,6 +108,12 @@ int main(int argc, char** argv) {
     read_options.apply(read);
     cell_options.apply(options);
     validate(options);
+    if (options.placement == ViewCellOptions::Placement::File) {
+      if (!region.empty())
+        throw std::invalid_argument("--cells " + options.region_file + " and --region " + region +
+                                    " both name a region: give one");
+      region = options.region_file;
+    }
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "urbanpvs-cells: %s\n", e.what());
     return kExitUsage;

@@ -71,6 +71,9 @@ void print_summary(const City& city, const std::vector<Block>& blocks,
       "buildings\n",
       r.roof_eaves, r.raised_parts, r.footprints_from_walls, r.footprints_unknown, r.on_terrain,
       r.installations);
+  if (!r.terrain_note.empty()) std::printf("DEM:         %s\n", r.terrain_note.c_str());
+  if (r.osm_multipolygons > 0)
+    std::printf("OSM:         %zu buildings from multipolygons\n", r.osm_multipolygons);
   std::printf("repairs:     %zu geometric repairs, %zu objects that occlude nothing\n",
               r.repairs.size(), r.non_occluding.size());
   for (const std::string& line : r.repairs) std::printf("  repaired: %s\n", line.c_str());

@@ -53,6 +53,8 @@ std::string report_json(const BakeReport& r) {
                  {"blocks", r.blocks},
                  {"occluders", r.occluders},
                  {"cells", r.cells},
+                 {"cell_area_m2", r.cell_area},
+                 {"multipolygons", r.multipolygons},
                  {"cells_computed", r.cells_computed},
                  {"cells_from_journal", r.cells_from_journal},
                  {"pvs_entries", r.pvs_entries},
@@ -63,6 +65,7 @@ std::string report_json(const BakeReport& r) {
   j["repairs"] = r.repairs;
   j["non_occluding"] = r.non_occluding;
   j["warnings"] = r.warnings;
+  j["terrain"] = r.terrain.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(r.terrain);
   j["seconds"] = {{"read", r.seconds.read},
                   {"scene", r.seconds.scene},
                   {"visibility", r.seconds.visibility},
@@ -86,9 +89,9 @@ std::string summary_text(const BakeReport& r) {
                     r.output.c_str(), static_cast<unsigned long long>(r.output_bytes),
                     r.cells > 0 ? double(r.output_bytes) / double(r.cells) : 0.0));
   add(std::snprintf(line, sizeof line,
-                    "cells:       %zu (%zu computed on %u threads at %.1f cells/s, %zu from the "
-                    "journal)\n",
-                    r.cells, r.cells_computed, r.threads, r.cells_per_second(),
+                    "cells:       %zu over %.3f km² (%zu computed on %u threads at %.1f cells/s, "
+                    "%zu from the journal)\n",
+                    r.cells, r.cell_area * 1e-6, r.cells_computed, r.threads, r.cells_per_second(),
                     r.cells_from_journal));
   if (!r.ranks.empty()) {
     std::string shares;
@@ -109,6 +112,10 @@ std::string summary_text(const BakeReport& r) {
   for (const std::string& text : r.repairs) out += "  repaired:    " + text + "\n";
   for (const std::string& text : r.non_occluding) out += "  no occluder: " + text + "\n";
   for (const std::string& text : r.warnings) out += "  warning:     " + text + "\n";
+  if (r.multipolygons > 0)
+    add(std::snprintf(line, sizeof line, "  OSM:         %zu buildings from multipolygons\n",
+                      r.multipolygons));
+  if (!r.terrain.empty()) out += "terrain:     " + r.terrain + "\n";
   add(std::snprintf(
       line, sizeof line, "PVS:         mean %.1f, max %llu objects; %.1f %% culled on average\n",
       r.mean_pvs(), static_cast<unsigned long long>(r.pvs_max), 100.0 * r.fraction_culled()));

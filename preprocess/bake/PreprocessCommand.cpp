@@ -120,7 +120,10 @@ void Run::check_output_directory() const {
 
 void Run::read_inputs() {
   city_ = geometry::read_city(request_.inputs, request_.read);
-  input_hash_ = hash_input_files(request_.inputs);
+  // The DEM is input too: a journal of one terrain must not resume under another.
+  std::vector<std::string> hashed = request_.inputs;
+  if (!request_.read.terrain_path.empty()) hashed.push_back(request_.read.terrain_path);
+  input_hash_ = hash_input_files(hashed);
   report_.input_hash = input_hash_;
   std::uint64_t region_hash = 0;
   if (!request_.region_file.empty()) {
@@ -128,7 +131,7 @@ void Run::read_inputs() {
     region_hash = hash_input_files({request_.region_file});
   }
   settings_ = result_settings(request_, region_hash);
-  for (const std::string& path : request_.inputs) {
+  for (const std::string& path : hashed) {
     std::error_code ec;
     const auto size = fs::file_size(path, ec);
     report_.inputs.push_back({path, ec ? 0 : static_cast<std::uint64_t>(size)});
@@ -258,6 +261,8 @@ int Run::execute() {
   report_.repairs = city_.report.repairs;
   report_.non_occluding = city_.report.non_occluding;
   report_.warnings = city_.report.warnings;
+  report_.multipolygons = city_.report.osm_multipolygons;
+  report_.terrain = city_.report.terrain_note;
   note("read %zu objects from %zu files (%.2f s)", city_.objects.size(), request_.inputs.size(),
        report_.seconds.read);
 
@@ -267,6 +272,7 @@ int Run::execute() {
   report_.blocks = scene.blocks().size();
   report_.occluders = scene.occluders().size();
   report_.cells = scene.cell_count();
+  report_.cell_area = scene.mesh().free_area;
   note("scene: %zu blocks, %zu occluders, %zu view cells (%.2f s)", report_.blocks,
        report_.occluders, report_.cells, report_.seconds.scene);
 

@@ -98,6 +98,13 @@ void finish_and_validate(PreprocessRequest& r, const SettingTexts& texts) {
     // The pixel size defaults to the largest one that keeps rasterization conservative for ε
     // (thesis 7.2); a larger one is refused with CullMapSettings' own explanation.
     if (!texts.count("pixel")) r.bake.pixel = default_pixel(r.bake.cells.epsilon);
+    // --cells FILE is --region FILE by another name.
+    if (r.bake.cells.placement == geometry::ViewCellOptions::Placement::File) {
+      if (!r.region_file.empty())
+        throw UsageError("--cells " + r.bake.cells.region_file + " and --region " + r.region_file +
+                         " both name a region: give one");
+      r.region_file = r.bake.cells.region_file;
+    }
     r.bake.validate();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());

@@ -122,6 +122,49 @@ TEST(ValidateRayScene, FarSideIsSeenWhereTheSegmentMeetsTheObjectFirst) {
   EXPECT_FALSE(validate::RayScene(c).reaches({-5, 5, 1}, {30, 5, 1}, 0));
 }
 
+// A ridge z = 10 - |x| / 2 along y, as a TIN of four triangles over -60..60 x -20..20.
+geometry::Terrain ridge() {
+  using V = geometry::Vec3;
+  auto z = [](double x) { return 10 - std::abs(x) / 2; };
+  geometry::Terrain t;
+  for (const auto& [a, b] : {std::pair{-60.0, 0.0}, std::pair{0.0, 60.0}}) {
+    t.triangles.push_back({{V{a, -20, z(a)}, V{b, -20, z(b)}, V{b, 20, z(b)}}});
+    t.triangles.push_back({{V{a, -20, z(a)}, V{b, 20, z(b)}, V{a, 20, z(a)}}});
+  }
+  return t;
+}
+
+TEST(ValidateRayScene, TheTerrainIsTheEarthUnderBuildingsOnACrest) {
+  // Box 0 stands on the ridge's crest, on its lowest ground (7.5 m at x = +-5), as readers
+  // place buildings on terrain; box 1 is the target down the far slope. A segment under box
+  // 0's floor is under the crest: the earth hides it, as the bake's occluders (which reach
+  // down without end) do. Without the terrain the validator would see through and report a
+  // miss that is none (Monaco's SRTM tile, before the terrain was the earth here).
+  // Boxes 2 and 3 stand at the western foot (-12.5 m): by the median of its neighbours' bases
+  // box 0 is raised, so it gets no skirts.
+  geometry::City c =
+      city_of({box_object(0, -5, -5, 5, 5, 7.5, 17.5), box_object(1, 30, -5, 40, 5, -5, 5),
+               box_object(2, -45, 10, -40, 15, -12.5, -2.5),
+               box_object(3, -45, -15, -40, -10, -12.5, -2.5)});
+  c.terrain = ridge();
+  EXPECT_FALSE(validate::RayScene(c).reaches({-30, 0, 1}, {30, 0, 1}, 1));  // through the crest
+  EXPECT_TRUE(validate::RayScene(c).reaches({-30, 0, 40}, {30, 0, 4}, 1));  // over box 0
+  c.terrain = {};
+  EXPECT_TRUE(validate::RayScene(c).reaches({-30, 0, 1}, {30, 0, 1}, 1));
+}
+
+TEST(ValidateRayScene, OnTerrainARaisedPartKeepsTheViewBelowItOpen) {
+  // Box 0, a skyway 15..18 m over the crest (terrain at most 10 m under it), hangs no skirt,
+  // although its neighbours' bases (box 1's, -5 m) say nothing about that: the view under it
+  // stays open. On the same box standing on the crest (floor 7.5 m) the view is stopped.
+  geometry::City c =
+      city_of({box_object(0, -5, -5, 5, 5, 15, 18), box_object(1, 30, -5, 40, 5, -5, 5)});
+  c.terrain = ridge();
+  EXPECT_TRUE(validate::RayScene(c).reaches({-10, 0, 12.5}, {30, 0, 4}, 1));
+  c.objects[0] = box_object(0, -5, -5, 5, 5, 7.5, 18);
+  EXPECT_FALSE(validate::RayScene(c).reaches({-10, 0, 12.5}, {30, 0, 4}, 1));
+}
+
 TEST(ValidateRayScene, ViewsPassBelowARaisedPartButNotBelowAFloatingBase) {
   // Box 0 floats 0.5 m above the ground (Delft: bases above the ground interpolated between
   // buildings): the ground is under it. Box 2 is raised 5 m (a skyway between box 0 and box 3):

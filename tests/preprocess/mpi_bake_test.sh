@@ -30,7 +30,7 @@ same ref.pvs three.pvs
 grep -q '^ranks: *3 (cells [0-9]*/[0-9]*/[0-9]*; most over mean' three.txt ||
   fail "the summary does not list the 3 ranks: $(cat three.txt)"
 shares=$(sed -n 's|^ranks: *3 (cells \([0-9/]*\);.*|\1|p' three.txt)
-total=$(sed -n 's|^cells: *\([0-9]*\) (\([0-9]*\) computed.*|\2|p' three.txt)
+total=$(sed -n 's|^cells: .*(\([0-9]*\) computed.*|\1|p' three.txt)
 sum=0
 IFS=/ read -ra parts <<< "$shares"
 for n in "${parts[@]}"; do sum=$((sum + n)); done

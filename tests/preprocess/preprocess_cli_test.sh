@@ -15,6 +15,8 @@
 #   repairs   a broken ring is repaired and a building without height kept as an object that
 #             occludes nothing: listed in the summary and the report, present in the file
 #   payloads  --payload carries a property into the file (2.1) as each object's payload
+#   terrain   --terrain DEM (an Esri ASCII grid of a slope): buildings and cells stand on it,
+#             the validator finds no miss; bad rasters exit 17; --cells FILE is --region FILE
 # Usage: preprocess_cli_test.sh CASE WORK_DIR PREPROCESS CITYGEN VALIDATE INSPECT BAD_INPUT_DIR
 set -euo pipefail
 case_name=$1 work=$2 preprocess=$3 citygen=$4 validate=$5 inspect=$6 bad=$7
@@ -69,6 +71,21 @@ bake_and_kill() {
   killed=0
   if kill -9 "$pid" 2>/dev/null; then killed=1; fi
   wait "$pid" 2>/dev/null || true
+}
+
+# Three buildings in EPSG:3067, two with a "tile" property (a string and a number).
+write_tiles() {
+  cat > tiles.geojson <<'JSON'
+{"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:3067"}},
+ "features": [
+  {"type": "Feature", "id": "a", "properties": {"building": "yes", "height": 12, "tile": "t/0/1"},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [30, 0], [30, 20], [0, 20], [0, 0]]]}},
+  {"type": "Feature", "id": "b", "properties": {"building": "yes", "height": 9, "tile": 42},
+   "geometry": {"type": "Polygon", "coordinates": [[[60, 0], [70, 0], [70, 10], [60, 10], [60, 0]]]}},
+  {"type": "Feature", "id": "c", "properties": {"building": "yes", "height": 9},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 60], [20, 60], [20, 75], [0, 75], [0, 60]]]}}
+ ]}
+JSON
 }
 
 case $case_name in
@@ -273,20 +290,67 @@ JSON
     fail "urbanpvs-validate found misses (or failed)"
   ;;
 
+terrain)
+  # GeoJSON buildings on a DEM: the slope z = 20 + 0.2 x, 10 m pixels over -400..600 m, with no
+  # reference system (taken as the city's, with a warning).
+  write_tiles
+  awk 'BEGIN { print "ncols 100\nnrows 100\nxllcorner -400\nyllcorner -400\ncellsize 10";
+               print "NODATA_value -9999";
+               for (r = 0; r < 100; r++) { line = "";
+                 for (c = 0; c < 100; c++) line = line sprintf("%g ", 20 + 0.2 * (-400 + (c + 0.5) * 10));
+                 print line } }' > slope.asc
+  "$preprocess" tiles.geojson -o slope.pvs --max-cell-edge 20 --epsilon 2 --terrain slope.asc \
+    --report slope.json 2> stderr.txt || fail "the bake with --terrain failed: $(cat stderr.txt)"
+  grep -q '^terrain:     slope.asc (AAIGrid, (none), 100 x 100 pixels of 10.0 x 10.0 m), resampled every 5.0 m' \
+    stderr.txt || fail "the summary does not describe the terrain: $(cat stderr.txt)"
+  grep -q 'warning:     slope.asc: the raster names no reference system' stderr.txt ||
+    fail "no warning for a raster without a reference system"
+  grep -q '"terrain": "slope.asc (AAIGrid' slope.json || fail "the report lacks the terrain"
+  # Every cell's eye band lies on the slope: its lowest point is the ground at the cell's
+  # western corner, 20 + 0.2 x, so no cell reaches below the slope's lowest ground under the
+  # default region (x >= -50: z >= 10) or starts at z = 0.
+  "$inspect" slope.pvs --json > dump.json
+  grep -o '"z":\[[^],]*' dump.json | sed 's/"z":\[//' > zmin.txt
+  [ -s zmin.txt ] || fail "no cells in the dump"
+  awk '$1 < 9.9 { bad = 1 } $1 > 30 { high = 1 } END { exit bad || !high }' zmin.txt ||
+    fail "cells do not follow the terrain: lowest $(sort -g zmin.txt | head -1), highest $(sort -g zmin.txt | tail -1)"
+  "$validate" tiles.geojson slope.pvs --terrain slope.asc --viewpoints 400 \
+    --tightness-viewpoints 50 || fail "urbanpvs-validate found misses on the terrain"
+  # A file GDAL cannot read as a raster: exit 17, the file named, nothing written.
+  rc=0
+  "$preprocess" tiles.geojson -o bad.pvs --terrain tiles.geojson --quiet 2> stderr.txt || rc=$?
+  [ "$rc" -eq 17 ] || fail "a non-raster DEM gave exit $rc, not 17"
+  grep -q 'tiles.geojson: unsupported format: not a raster GDAL can read' stderr.txt ||
+    fail "wrong message: $(cat stderr.txt)"
+  absent bad.pvs
+  # --cells FILE is --region FILE: the same cells and PVSs, the region in the metadata.
+  cat > square.geojson <<'JSON'
+{"type": "Polygon", "coordinates": [[[-20, -20], [90, -20], [90, 90], [-20, 90], [-20, -20]]]}
+JSON
+  "$preprocess" tiles.geojson -o region.pvs --max-cell-edge 20 --epsilon 2 --region square.geojson --quiet
+  "$preprocess" tiles.geojson -o cells.pvs --max-cell-edge 20 --epsilon 2 --cells square.geojson --quiet
+  "$inspect" region.pvs --json | sed -n '/^"cells":\[/,$p' > region.cells
+  "$inspect" cells.pvs --json | sed -n '/^"cells":\[/,$p' > cells.cells
+  [ -s cells.cells ] || fail "no cells in the dump"
+  same region.cells cells.cells
+  "$inspect" cells.pvs | grep -q 'property:    region = square.geojson' ||
+    fail "--cells FILE does not record its region"
+  rc=0
+  "$preprocess" tiles.geojson -o both.pvs --cells square.geojson --region square.geojson 2> stderr.txt || rc=$?
+  [ "$rc" -eq 2 ] || fail "--cells FILE with --region gave exit $rc, not 2"
+  grep -q 'urbanpvs-preprocess: --cells square.geojson and --region square.geojson both name a region: give one' \
+    stderr.txt || fail "wrong message: $(cat stderr.txt)"
+  rc=0
+  "$preprocess" tiles.geojson -o none.pvs --cells nosuch.geojson 2> stderr.txt || rc=$?
+  [ "$rc" -eq 2 ] || fail "--cells with a missing file gave exit $rc, not 2"
+  grep -q -- '--cells must be everywhere, streets or an existing region file, got "nosuch.geojson"' \
+    stderr.txt || fail "wrong message: $(cat stderr.txt)"
+  ;;
+
 payloads)
   # --payload NAME carries a property into the file: strings as given, numbers as JSON text,
   # nothing for a building without it; the file is 2.1 and says where the values came from.
-  cat > tiles.geojson <<'JSON'
-{"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:3067"}},
- "features": [
-  {"type": "Feature", "id": "a", "properties": {"building": "yes", "height": 12, "tile": "t/0/1"},
-   "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [30, 0], [30, 20], [0, 20], [0, 0]]]}},
-  {"type": "Feature", "id": "b", "properties": {"building": "yes", "height": 9, "tile": 42},
-   "geometry": {"type": "Polygon", "coordinates": [[[60, 0], [70, 0], [70, 10], [60, 10], [60, 0]]]}},
-  {"type": "Feature", "id": "c", "properties": {"building": "yes", "height": 9},
-   "geometry": {"type": "Polygon", "coordinates": [[[0, 60], [20, 60], [20, 75], [0, 75], [0, 60]]]}}
- ]}
-JSON
+  write_tiles
   "$preprocess" tiles.geojson -o tiles.pvs --max-cell-edge 20 --epsilon 2 --payload tile --quiet ||
     fail "the bake with --payload failed"
   "$inspect" tiles.pvs > summary.txt

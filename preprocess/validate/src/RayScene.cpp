@@ -230,8 +230,22 @@ RayScene::RayScene(const geometry::City& city) {
     return e.zmin > median + kOnGround ? median : std::max(e.zmin, median);
   };
 
+  // The terrain (a CityJSON TINRelief or a DEM), when the city has one, is the earth itself: each
+  // triangle stops every segment, as a skirt does. On a slope the median of the neighbours'
+  // bases says nothing about a building's ground (Monaco: bases 50 m apart within 50 m), so
+  // there an object stands on the ground when its lowest point is within kOnGround of the
+  // highest terrain under it, and is raised above that terrain otherwise.
+  const std::vector<double> terrain_top = add_terrain(city, extent);
+  auto ground_of = [&](const geometry::CityObject& o) {
+    const Box3& e = extent[o.index];
+    const double top = terrain_top[o.index];
+    if (top == -std::numeric_limits<double>::infinity()) return ground_level(e);
+    return e.zmin <= top + kOnGround ? e.zmin : top;
+  };
+
   double lowest = std::numeric_limits<double>::infinity();
   for (const Box3& e : extent) lowest = std::min(lowest, e.zmin);
+  for (const Face& f : skirts_) lowest = std::min(lowest, f.lo[2]);
   const double deep = lowest - kSkirtDepth;
   object_faces_.reserve(city.objects.size() + 1);
   for (const geometry::CityObject& o : city.objects) {
@@ -242,7 +256,7 @@ RayScene::RayScene(const geometry::City& city) {
     }
     if (extent[o.index].xy.empty()) continue;
     for (const geometry::Surface3& s : o.surfaces) add_face(s.rings, o.index, s.blocks);
-    const double ground = ground_level(extent[o.index]);
+    const double ground = ground_of(o);
     for (const geometry::Surface3& s : o.surfaces) {
       if (s.rings.empty() || !s.blocks) continue;
       const Vertex n = unit_normal(s.rings.front());
@@ -280,6 +294,45 @@ RayScene::RayScene(const geometry::City& city) {
   face_stamp_.assign(faces_.size(), 0);
   skirt_stamp_.assign(skirts_.size(), 0);
   box_stamp_.assign(boxes_.size(), 0);
+}
+
+std::vector<double> RayScene::add_terrain(const geometry::City& city,
+                                          const std::vector<Box3>& extent) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> top(city.objects.size(), -kInf);
+  const std::vector<geometry::Triangle3>& tin = city.terrain.triangles;
+  if (tin.empty()) return top;
+  Box2 all;
+  std::vector<Box3> boxes(tin.size());
+  for (std::size_t i = 0; i < tin.size(); ++i) {
+    for (const Vertex& v : tin[i].v) boxes[i].extend(Vec2{v[0], v[1]}, v[2]);
+    all.extend(boxes[i].xy);
+    Face f;
+    if (make_face({{tin[i].v[0], tin[i].v[1], tin[i].v[2]}}, 0, f)) skirts_.push_back(f);
+  }
+  // Buckets of kGroundReach over the TIN, for the highest terrain under each object.
+  const int nx = std::max(1, int(std::ceil((all.max.x - all.min.x) / kGroundReach)));
+  const int ny = std::max(1, int(std::ceil((all.max.y - all.min.y) / kGroundReach)));
+  auto column = [&](double x) {
+    return std::clamp(int(std::floor((x - all.min.x) / kGroundReach)), 0, nx - 1);
+  };
+  auto row = [&](double y) {
+    return std::clamp(int(std::floor((y - all.min.y) / kGroundReach)), 0, ny - 1);
+  };
+  std::vector<std::vector<std::uint32_t>> buckets(std::size_t(nx) * std::size_t(ny));
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    for (int y = row(boxes[i].xy.min.y); y <= row(boxes[i].xy.max.y); ++y)
+      for (int x = column(boxes[i].xy.min.x); x <= column(boxes[i].xy.max.x); ++x)
+        buckets[std::size_t(y) * std::size_t(nx) + std::size_t(x)].push_back(i);
+  for (const geometry::CityObject& o : city.objects) {
+    const Box2& e = extent[o.index].xy;
+    if (e.empty() || !e.overlaps(all)) continue;
+    for (int y = row(e.min.y); y <= row(e.max.y); ++y)
+      for (int x = column(e.min.x); x <= column(e.max.x); ++x)
+        for (std::uint32_t i : buckets[std::size_t(y) * std::size_t(nx) + std::size_t(x)])
+          if (boxes[i].xy.overlaps(e)) top[o.index] = std::max(top[o.index], boxes[i].zmax);
+  }
+  return top;
 }
 
 bool RayScene::make_face(const Rings& rings, std::uint32_t object, Face& f) {

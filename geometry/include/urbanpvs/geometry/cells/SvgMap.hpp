@@ -3,6 +3,7 @@
 // and view cells. North is up (SVG's y axis points down, so y is flipped).
 #pragma once
 
+#include <array>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,6 +19,8 @@ class SvgMap {
 
   void polygon(const Polygon& p, const std::string& style);
   void triangle(Vec2 a, Vec2 b, Vec2 c, const std::string& style);
+  /// Many triangles as one path of one style: a mesh of 20,000 view cells stays a small file.
+  void triangles(const std::vector<std::array<Vec2, 3>>& ts, const std::string& style);
   void text(Vec2 at, const std::string& s, const std::string& style);
 
   /// The finished document.

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "urbanpvs/geometry/city/CityModel.hpp"
@@ -22,8 +23,12 @@ struct ViewCellOptions {
   /// Where cells go when no `region` is given: all free space near the buildings, or only
   /// where the input maps streets, squares and paths (City::streets; thesis 5.3 used
   /// street cells too). A walking or driving simulator needs no cells in backyards.
-  enum class Placement { Everywhere, Streets };
+  /// File: the region comes from `region_file` (--cells FILE), which the tools read into
+  /// `region` before building the cells, as for --region FILE.
+  enum class Placement { Everywhere, Streets, File };
   Placement placement = Placement::Everywhere;
+  /// With Placement::File: the GeoJSON (Multi)Polygons of the region (read_region_file).
+  std::string region_file;
   /// Longest allowed cell edge. Smaller cells give tighter PVSs but more cells (thesis 5.3; the
   /// thesis's 8 km² Vienna model had 82,300 cells). The default gives 82,800 cells on a
   /// generated Vienna-scale city (8 km², ~2,000 blocks, seed 7). [Units: m]

@@ -73,7 +73,7 @@ struct CityObject {
   bool occludes = true;
 };
 
-/// A triangulated terrain (CityJSON TINRelief), absolute heights.
+/// A triangulated terrain (CityJSON TINRelief, or a DEM given with --terrain), absolute heights.
 struct Terrain {
   std::vector<Triangle3> triangles;
   bool empty() const { return triangles.empty(); }
@@ -100,6 +100,8 @@ struct ReadReport {
   std::size_t roof_eaves = 0;
   /// GeoJSON objects set on the terrain (TINRelief) of a CityJSON file read with them.
   std::size_t on_terrain = 0;
+  /// OpenStreetMap buildings and parts assembled from multipolygon relations.
+  std::size_t osm_multipolygons = 0;
   /// BuildingInstallations (and other non-part children) merged into their building.
   std::size_t installations = 0;
   /// Every repair that changed geometry, one line each: "file: id: what was done".
@@ -108,6 +110,7 @@ struct ReadReport {
   std::vector<std::string> non_occluding;
   std::vector<std::string> warnings;
   std::string coordinate_note;  ///< how the CRS / lon-lat decision was made
+  std::string terrain_note;     ///< where the terrain came from and how it was resampled
 };
 
 /// A street or path as the input maps it: its centre line (local frame) and its width.

@@ -36,6 +36,10 @@ struct ReadOptions {
   /// object carries as its payload (CityObject::payload): a key a renderer finds its mesh or
   /// tile by. Empty: no payloads.
   std::string payload_key;
+  /// A digital elevation model (any raster GDAL reads: GeoTIFF, SRTM .hgt) that becomes the
+  /// city's terrain (DemTerrain.hpp), replacing a CityJSON TINRelief: GeoJSON and OpenStreetMap
+  /// buildings stand on it and view cells follow it. Empty: none.
+  std::string terrain_path;
 };
 
 /// Reads every file into one city (all files must share one coordinate reference system).

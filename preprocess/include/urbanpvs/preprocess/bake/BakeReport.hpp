@@ -50,6 +50,9 @@ struct BakeReport {
   /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding),
   /// and what it warns of (ReadReport::warnings).
   std::vector<std::string> repairs, non_occluding, warnings;
+  std::size_t multipolygons = 0;  ///< buildings assembled from OSM multipolygon relations
+  std::string terrain;            ///< ReadReport::terrain_note; empty without a DEM
+  double cell_area = 0;           ///< the view cells' summed area, free space in their region [m²]
   std::size_t cells_computed = 0;      ///< by this run
   std::size_t cells_from_journal = 0;  ///< taken from a resumed journal
   std::uint64_t pvs_entries = 0;       ///< sum of PVS sizes over all cells

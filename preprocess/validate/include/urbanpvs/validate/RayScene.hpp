@@ -13,6 +13,11 @@
 //    interpolated between buildings; the 3D BAG has walls starting 25 cm above a base slab)
 //    does not look under it through the earth, while views under raised parts (feet higher up)
 //    stay open. Skirts block every object's segments, their own building's too.
+//  - The terrain (a CityJSON TINRelief, a DEM given with --terrain), where the city has one, is
+//    the earth: its triangles block every segment, like the skirts. On it, a building stands on
+//    the ground when its lowest point is within 1 m of the highest terrain under it (its walls'
+//    feet there get skirts); the median of its neighbours' bases, which judges flat cities,
+//    says nothing on a slope.
 //  - Objects that do not occlude (geometry beyond repair, unknown height) block nothing and are
 //    as large as they may be: their whole box is theirs.
 #pragma once
@@ -94,6 +99,9 @@ class RayScene {
 
   /// Makes `face` the blocker polygon of the rings; false when they have no area.
   bool make_face(const std::vector<std::vector<Vec3>>& rings, std::uint32_t object, Face& face);
+  /// Adds the city's terrain triangles as skirts (the earth); returns the highest terrain under
+  /// each object's extent (-infinity where there is none).
+  std::vector<double> add_terrain(const geometry::City& city, const std::vector<Box3>& extent);
   void add_face(const std::vector<std::vector<Vec3>>& rings, std::uint32_t object, bool blocks);
   /// Skirts below the bottom edges of a wall polygon whose foot is at most `highest_foot`,
   /// reaching down to `deep`.
