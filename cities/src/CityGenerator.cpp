@@ -7,6 +7,7 @@
 #include "BlockLayout.hpp"
 #include "Geometry2d.hpp"
 #include "StreetNetwork.hpp"
+#include "Terrain.hpp"
 
 namespace urbanpvs::cities {
 
@@ -42,6 +43,10 @@ City generateCity(const CityParams& params) {
     block.building_count = static_cast<std::uint32_t>(content.buildings.size());
     for (Building& b : content.buildings) city.buildings.push_back(std::move(b));
     city.blocks.push_back(std::move(block));
+  }
+  if (params.hills > 0) {
+    city.terrain = detail::makeTerrain(city.side, params.seed, params.hills);
+    detail::standOnTerrain(city);
   }
   return city;
 }

@@ -107,7 +107,44 @@ class Writer {
     out_ += std::to_string(city_.params.seed);
     out_ += ", roofs ";
     out_ += toString(city_.params.roofs);
+    if (city_.params.hills > 0) {
+      out_ += ", hills ";
+      appendMetres(out_, toMillimetres(city_.params.hills));
+      out_ += " m";
+    }
     out_ += "\"},\n";
+  }
+
+  // The relief as one TINRelief: every grid square two triangles, counter-clockwise from above.
+  void writeTerrain(bool first) {
+    const Terrain& t = city_.terrain;
+    const auto base = static_cast<std::uint32_t>(vertices_.size());
+    for (int j = 0; j < t.rows; ++j)
+      for (int i = 0; i < t.columns; ++i)
+        vertices_.push_back({toMillimetres(t.origin.x + i * t.spacing),
+                             toMillimetres(t.origin.y + j * t.spacing), toMillimetres(t.at(i, j))});
+    if (!first) out_ += ",\n";
+    out_ += "\"terrain\":{\"type\":\"TINRelief\",\"geometry\":[{\"type\":\"CompositeSurface\",";
+    out_ += "\"lod\":\"1\",\"boundaries\":[";
+    auto node = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * t.columns + i); };
+    auto triangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, bool comma) {
+      if (comma) out_ += ',';
+      out_ += "[[";
+      appendInt(out_, a);
+      out_ += ',';
+      appendInt(out_, b);
+      out_ += ',';
+      appendInt(out_, c);
+      out_ += "]]";
+    };
+    bool comma = false;
+    for (int j = 0; j + 1 < t.rows; ++j)
+      for (int i = 0; i + 1 < t.columns; ++i) {
+        triangle(node(i, j), node(i + 1, j), node(i + 1, j + 1), comma);
+        triangle(node(i, j), node(i + 1, j + 1), node(i, j + 1), true);
+        comma = true;
+      }
+    out_ += "]}]}\n";
   }
 
   void writeObjects() {
@@ -146,6 +183,11 @@ class Writer {
         writeGeometry(part.solid);
         out_ += '}';
       }
+    }
+    if (!city_.terrain.empty()) {
+      out_ += '\n';
+      writeTerrain(first);
+      return;
     }
     out_ += '\n';
   }

@@ -22,6 +22,11 @@ void validate(const CityParams& params) {
       throw std::invalid_argument("origin coordinates must be finite and within ±1e7 m");
     }
   }
+  if (!std::isfinite(params.hills) || params.hills < 0 || params.hills > CityParams::kMaxHills) {
+    throw std::invalid_argument("hills must be between 0 and " +
+                                std::to_string(CityParams::kMaxHills) + " m, got " +
+                                std::to_string(params.hills));
+  }
   if (params.roofs != RoofMode::Flat && params.roofs != RoofMode::Lod2) {
     throw std::invalid_argument("unknown roof mode");
   }

@@ -52,6 +52,12 @@ int main(int argc, char** argv) {
   app.add_option("--roofs", roofs, "Roofs: flat (LoD1 prisms) or lod2 (gabled and hipped roofs)")
       ->capture_default_str()
       ->check(CLI::IsMember({"flat", "lod2"}));
+  app.add_option("--hills", params.hills,
+                 "Relief of the terrain in metres: smooth hills and valleys written as a CityJSON "
+                 "TINRelief, buildings standing on them (0: flat ground, no terrain; the "
+                 "--geojson footprints stay flat)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, CityParams::kMaxHills));
   app.add_option("--origin-x", params.origin_x,
                  "EPSG:31256 easting of the south-west corner, metres")
       ->capture_default_str();

@@ -59,6 +59,57 @@ TEST(CityGenerator, Lod2CityIsTheFlatCityWithRoofs) {
   }
 }
 
+// --hills: the same city on a relief that spans exactly `hills`, each building's floor at or
+// below the TIN everywhere under its footprint (checked at the footprint's corners and on a
+// lattice inside its box, interpolating the grid's two triangles per square independently of
+// the generator), its solid raised by its ground, and its heights above the ground unchanged.
+TEST(CityGenerator, HillyBuildingsStandOnTheTerrainNeverAboveIt) {
+  CityParams p;
+  p.size_km2 = 0.25;
+  p.seed = 3;
+  const City flat = urbanpvs::cities::generateCity(p);
+  EXPECT_TRUE(flat.terrain.empty());
+  p.hills = 50;
+  const City hilly = urbanpvs::cities::generateCity(p);
+  const urbanpvs::cities::Terrain& t = hilly.terrain;
+  ASSERT_FALSE(t.empty());
+  const auto [lo, hi] = std::minmax_element(t.heights.begin(), t.heights.end());
+  EXPECT_DOUBLE_EQ(*lo, 0.0);
+  EXPECT_NEAR(*hi, 50.0, 1e-3);
+  auto tin = [&](double x, double y) {
+    const double u = (x - t.origin.x) / t.spacing, v = (y - t.origin.y) / t.spacing;
+    const int i = int(u), j = int(v);
+    const double fu = u - i, fv = v - j;
+    const double a = t.at(i, j), b = t.at(i + 1, j), c = t.at(i + 1, j + 1), d = t.at(i, j + 1);
+    // Split along the south-west to north-east diagonal.
+    return fu >= fv ? a + fu * (b - a) + fv * (c - b) : a + fv * (d - a) + fu * (c - d);
+  };
+  ASSERT_EQ(flat.buildings.size(), hilly.buildings.size());
+  double lowest = 1e9, highest = -1e9;
+  for (std::size_t k = 0; k < hilly.buildings.size(); ++k) {
+    const auto& b = hilly.buildings[k];
+    EXPECT_EQ(b.eaves_height, flat.buildings[k].eaves_height);
+    double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+    for (const auto& q : b.footprint.outer) {
+      EXPECT_LE(b.ground_z, tin(q.x, q.y) + 1e-9) << b.id;
+      x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x),
+      y1 = std::max(y1, q.y);
+    }
+    for (double y = y0; y <= y1; y += 2)
+      for (double x = x0; x <= x1; x += 2) EXPECT_LE(b.ground_z, tin(x, y) + 1e-9) << b.id;
+    const auto& solid = b.parts.empty() ? b.solid : b.parts.front().solid;
+    double zmin = 1e9;
+    for (const auto& v : solid.vertices) zmin = std::min(zmin, v.z);
+    EXPECT_NEAR(zmin, b.ground_z, 1e-9) << b.id;
+    lowest = std::min(lowest, b.ground_z), highest = std::max(highest, b.ground_z);
+  }
+  EXPECT_GT(highest - lowest, 20);  // the buildings follow the hills
+  const std::string text = urbanpvs::cities::cityJsonText(hilly);
+  EXPECT_NE(text.find("\"terrain\":{\"type\":\"TINRelief\""), std::string::npos);
+  EXPECT_NE(text.find(", hills 50.000 m\""), std::string::npos);
+  EXPECT_EQ(urbanpvs::cities::cityJsonText(urbanpvs::cities::generateCity(p)), text);
+}
+
 TEST(CityGenerator, CountsScaleWithSize) {
   const City& quarter = city(0.25, 7, RoofMode::Flat);
   const City& one = oneKm2Flat();

@@ -68,6 +68,26 @@ validate::ValidationReport bake_and_validate(const geometry::City& city,
   return r;
 }
 
+// A generated hilly city (40 m of relief, written as a TINRelief, buildings standing on it)
+// baked and validated with the terrain as the earth: the terrain route from the generator
+// through the reader, the cells' eye band on the ground and the validator.
+TEST(Validate, GeneratedHillyCityHasNoMisses) {
+  cities::CityParams p;
+  p.size_km2 = 0.1;
+  p.seed = 5;
+  p.hills = 40;
+  const geometry::City city =
+      geometry::read_city_text(cities::cityJsonText(cities::generateCity(p)), "hills.city.json");
+  ASSERT_FALSE(city.terrain.empty());
+  double lo = 1e9, hi = -1e9;
+  for (const geometry::CityObject& o : city.objects)
+    lo = std::min(lo, o.ground_z), hi = std::max(hi, o.ground_z);
+  EXPECT_GT(hi - lo, 10) << "the buildings do not stand on the hills";
+  const validate::ValidationReport r = bake_and_validate(city, small_bake(city, 1.0, 1.39), 1500);
+  EXPECT_TRUE(r.misses.empty());
+  EXPECT_GT(r.viewpoints, 0u);
+}
+
 // ---- the ray scene on hand-built boxes -------------------------------------------------------
 
 // A box building: its six faces as the input's surfaces, its box, footprint and occluder.

@@ -72,7 +72,7 @@ struct Building {
   /// The whole building's ground outline. Footprints of different buildings never overlap in
   /// area; neighbours in a block share their common wall with identical vertices.
   Polygon footprint;
-  double ground_z = 0.0;      ///< terrain height under the building (the ground is flat: 0)
+  double ground_z = 0.0;      ///< lowest terrain under the building (0 on flat ground)
   double eaves_height = 0.0;  ///< metres above ground_z where walls meet the roof (lowest eaves)
   double ridge_height = 0.0;  ///< metres above ground_z of the highest point (== eaves if flat)
   RoofKind roof = RoofKind::Flat;
@@ -108,12 +108,25 @@ struct OpenStrip {
   double open_width = 0.0;   ///< metres between the nearest building lines (water plus quays)
 };
 
+/// The ground of a hilly city (CityParams::hills > 0): heights at the nodes of a square grid,
+/// row by row from the south-west corner `origin`; each grid square is two triangles, split
+/// along its south-west to north-east diagonal. Empty for a flat city.
+struct Terrain {
+  Vec2 origin;
+  double spacing = 0.0;  ///< metres between nodes
+  int columns = 0, rows = 0;
+  std::vector<double> heights;  ///< columns * rows, whole millimetres
+  bool empty() const { return heights.empty(); }
+  double at(int i, int j) const { return heights[static_cast<std::size_t>(j) * columns + i]; }
+};
+
 struct City {
   CityParams params;
   double side = 0.0;  ///< side length of the square city, metres; all geometry is in [0, side]²
   std::vector<Block> blocks;
   std::vector<Building> buildings;
   OpenStrip river;
+  Terrain terrain;
 };
 
 }  // namespace urbanpvs::cities

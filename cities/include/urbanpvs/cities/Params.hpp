@@ -21,6 +21,10 @@ struct CityParams {
   std::uint64_t seed = 1;
   /// Flat (LoD1) or pitched (LoD2) roofs.
   RoofMode roofs = RoofMode::Flat;
+  /// Relief of the terrain (m): 0 keeps the ground flat at z = 0 (and writes no terrain);
+  /// above 0, smooth hills and valleys of up to about this height difference, written as a
+  /// CityJSON TINRelief, with every building standing on it. Range [0, kMaxHills].
+  double hills = 0.0;
   /// EPSG:31256 (MGI / Austria GK East) easting of the city's south-west corner, metres. The
   /// default puts the city near Vienna's centre. Rounded to millimetres. Range ±1e7.
   double origin_x = 0.0;
@@ -30,6 +34,7 @@ struct CityParams {
   // Below 0.1 km² (316 m side) the river, up to ~110 m wide, would leave little city.
   static constexpr double kMinSizeKm2 = 0.1;
   static constexpr double kMaxSizeKm2 = 100.0;
+  static constexpr double kMaxHills = 300.0;
 
   /// Side length of the square city in metres (sqrt(size_km2) * 1000).
   double sideMetres() const;
