@@ -66,7 +66,12 @@ std::vector<Setting> make_table() {
       "Largest cull map (at least --initial-map); beyond it the samples' horizons decide "
       "(65536: cull maps alone, grown to cover the city)",
       [](R& r) -> int& { return r.bake.max_map; }));
-  // ---- the run (no effect on the result) ----
+  // ---- the run and the file (no effect on the PVS) ----
+  t.push_back(geometry::choice_setting<runtime::PvsCoding, R>(
+      "pvs-coding", S::Run, {"varint", "exp-golomb"},
+      "PVS coding of the file: exp-golomb (format 2.2, the smaller) or varint (format 2.0/2.1, "
+      "for engines that ship an older reader)",
+      [](R& r) -> runtime::PvsCoding& { return r.pvs_coding; }));
   Setting threads =
       geometry::integer_setting<unsigned, R>("threads", "", S::Run, 1, 1024, "Worker threads",
                                              [](R& r) -> unsigned& { return r.threads; });
@@ -124,8 +129,10 @@ std::string settings_markdown() {
       "|---|---|---|---|---|---|\n";
   for (const Setting& s : bake_settings()) {
     const std::string value = s.default_shown(defaults);
+    std::string limits;  // a choice's "a | b" must not split the table's cells
+    for (char c : s.limits_text()) limits += c == '|' ? std::string("\\|") : std::string(1, c);
     out += "| `--" + s.key + "` | " + stage_names[static_cast<int>(s.stage)] + " | " + value +
-           " | " + s.limits_text() + " | " +
+           " | " + limits + " | " +
            (s.changes_result() ? "`" + s.property_key() + "`" : std::string("-")) + " | " + s.help +
            " |\n";
   }

@@ -231,7 +231,9 @@ void Run::write_output(const BakeScene& scene) {
       scene.pvs_file(std::exchange(pvs_, {}), std::move(properties), input_hash_);
   std::vector<std::byte> bytes;
   try {
-    bytes = runtime::encode(bake);
+    runtime::EncodeOptions options;
+    options.pvs_coding = request_.pvs_coding;
+    bytes = runtime::encode(bake, options);
   } catch (const runtime::PvsWriteError& e) {
     throw Failure{kExitProcessing, request_.output + ": cannot encode: " + e.what()};
   }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
-// Bit tricks the bitset PVS encoding needs, without C++20's <bit>.
+// Bit tricks the bitset and exp-Golomb PVS encodings need, without C++20's <bit>.
 
 #include <cstdint>
 
@@ -25,15 +25,30 @@
 namespace urbanpvs::runtime::detail {
 
 /// Index of the lowest set bit; `v` must be non-zero.
-inline unsigned count_trailing_zeros(std::uint32_t v) noexcept {
+inline unsigned count_trailing_zeros64(std::uint64_t v) noexcept {
 #if defined(__GNUC__) || defined(__clang__)
-  return static_cast<unsigned>(__builtin_ctz(v));
+  return static_cast<unsigned>(__builtin_ctzll(v));
 #else
   unsigned n = 0;
   while ((v & 1u) == 0) {
     v >>= 1;
     ++n;
   }
+  return n;
+#endif
+}
+
+inline unsigned count_trailing_zeros(std::uint32_t v) noexcept {
+  return count_trailing_zeros64(v);
+}
+
+/// Bits needed to write `v` (0 for 0).
+inline unsigned bit_width64(std::uint64_t v) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  return v == 0 ? 0 : 64 - static_cast<unsigned>(__builtin_clzll(v));
+#else
+  unsigned n = 0;
+  for (; v != 0; v >>= 1) ++n;
   return n;
 #endif
 }

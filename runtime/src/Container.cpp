@@ -79,7 +79,9 @@ Status read_container(const unsigned char* data, std::size_t size, bool verify_c
       (info.minor <= format::latest_minor(info.major) && table_end != header_size)) {
     return fail(error, Status::kMalformedHeader, "header size does not match the section count");
   }
-  if ((info.required_features & ~kKnownRequiredFeatures) != 0) {
+  // The coded PVS is a 2.x feature: a 1.x file that asks for it is not one this reader knows.
+  const std::uint32_t known = info.major == 1 ? 0 : kKnownRequiredFeatures;
+  if ((info.required_features & ~known) != 0) {
     return fail(error, Status::kUnsupportedFeature,
                 "file requires features this reader does not implement (newer minor version)");
   }
@@ -117,7 +119,8 @@ Status read_container(const unsigned char* data, std::size_t size, bool verify_c
 }
 
 std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections,
-                                       std::uint16_t major, std::uint16_t minor) {
+                                       std::uint16_t major, std::uint16_t minor,
+                                       std::uint32_t required_features) {
   using namespace format;
   const std::uint32_t header_size =
       kFixedHeaderSize + static_cast<std::uint32_t>(sections.size()) * kSectionEntrySize;
@@ -131,7 +134,7 @@ std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections
   w.u32(header_size);
   w.u64(file_size);
   w.u32(static_cast<std::uint32_t>(sections.size()));
-  w.u32(0);  // required features
+  w.u32(required_features);
   w.u32(0);  // header crc, patched below
   w.u32(0);  // reserved
   std::uint64_t offset = header_size;

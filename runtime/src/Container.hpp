@@ -30,8 +30,10 @@ Status read_container(const unsigned char* data, std::size_t size, bool verify_c
 /// A section to write: id and bytes. Ids must be strictly increasing.
 using SectionBytes = std::pair<std::uint32_t, std::vector<unsigned char>>;
 
-/// Header + table + sections, version `major`.`minor`, checksums filled in.
+/// Header + table + sections, version `major`.`minor` with `required_features` set, checksums
+/// filled in.
 std::vector<std::byte> write_container(const std::vector<SectionBytes>& sections,
-                                       std::uint16_t major, std::uint16_t minor);
+                                       std::uint16_t major, std::uint16_t minor,
+                                       std::uint32_t required_features);
 
 }  // namespace urbanpvs::runtime::detail

@@ -71,7 +71,9 @@ Status load_sections(PvsFileData& file, const LoadOptions& options, LoadError& e
     return fail(error, Status::kMalformedSection, detail, SectionId::kCells);
   }
   PvsExpansion* expansion = options.expand_pvs ? &file.expanded : nullptr;
-  if (!read_pvs(pvs, file.cells.count, file.objects.count, file.pvs, expansion, detail)) {
+  const bool coded = (c.required_features & format::kFeatureCodedPvs) != 0;
+  if (!read_pvs(pvs, file.cells.count, file.objects.count, coded, file.cells.neighbours.data(),
+                file.pvs, expansion, detail)) {
     return fail(error, Status::kMalformedSection, detail, SectionId::kPvs);
   }
   if (const SectionInfo* s = c.major >= 2 ? find_section(c, SectionId::kPayloads) : nullptr) {

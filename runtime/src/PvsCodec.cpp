@@ -6,6 +6,7 @@
 #include "Bits.hpp"
 #include "ByteReader.hpp"
 #include "ByteWriter.hpp"
+#include "ExpGolomb.hpp"
 
 namespace urbanpvs::runtime::detail {
 namespace {
@@ -15,21 +16,34 @@ using format::PvsKind;
 /// "No further element" in the merge streams (above every 32-bit value).
 constexpr std::uint64_t kEnd = UINT64_MAX;
 
-/// A strictly increasing list stored as varint gaps (first value, then value - previous - 1).
+/// A strictly increasing list of a diff stored as gaps (first value, then value - previous - 1):
+/// varints in the plain layout, exp-Golomb codes of one order in the coded one. Only the rare
+/// events of a merge go through it, so one class with a branch serves both.
 class GapStream {
  public:
+  GapStream() noexcept = default;
+  /// `count` varints in [p, end).
   GapStream(const unsigned char* p, const unsigned char* end, std::uint32_t count) noexcept
       : p_(p), end_(end), left_(count) {}
+  /// `count` codes of order k from `bits`; `last`: the stream must end after them.
+  GapStream(const BitReader& bits, unsigned k, std::uint32_t count, bool last) noexcept
+      : bits_(bits), k_(k), coded_(true), last_(last), left_(count) {}
 
   /// Next value, or kEnd once `count` values were read (then the stream must be exactly at its
   /// end). False on malformed data.
   bool next(std::uint64_t& value) noexcept {
     if (left_ == 0) {
       value = kEnd;
-      return p_ == end_;
+      return coded_ ? !last_ || bits_.at_padded_end() : p_ == end_;
     }
-    std::uint32_t gap;
-    if (!read_varint(p_, end_, gap)) return false;
+    std::uint64_t gap;
+    if (coded_) {
+      if (!bits_.code(k_, gap)) return false;
+    } else {
+      std::uint32_t g;
+      if (!read_varint(p_, end_, g)) return false;
+      gap = g;
+    }
     value = base_ + gap;
     if (value > UINT32_MAX) return false;
     base_ = value + 1;
@@ -38,11 +52,36 @@ class GapStream {
   }
 
  private:
-  const unsigned char* p_;
-  const unsigned char* end_;
-  std::uint32_t left_;
+  const unsigned char* p_ = nullptr;
+  const unsigned char* end_ = nullptr;
+  BitReader bits_{nullptr, 0};
+  unsigned k_ = 0;
+  bool coded_ = false;
+  bool last_ = false;
+  std::uint32_t left_ = 0;
   std::uint64_t base_ = 0;
 };
+
+/// The removals and the additions of a diff, each as a stream; false when the removals run
+/// past the payload.
+bool open_diff_lists(const DiffHeader& d, GapStream& removals, GapStream& additions) noexcept {
+  if (d.coded) {
+    BitReader bits(d.lists, static_cast<std::size_t>(d.end - d.lists),
+                   static_cast<std::size_t>(d.blob_end - d.lists));
+    removals = GapStream(bits, d.removed_order, d.removed, false);
+    if (!bits.skip(d.removed_order, d.removed)) return false;
+    additions = GapStream(bits, d.added_order, d.added, true);
+    return true;
+  }
+  const unsigned char* additions_begin = d.lists;
+  for (std::uint32_t i = 0; i < d.removed; ++i) {
+    std::uint32_t ignored;
+    if (!read_varint(additions_begin, d.end, ignored)) return false;
+  }
+  removals = GapStream(d.lists, additions_begin, d.removed);
+  additions = GapStream(additions_begin, d.end, d.added);
+  return true;
+}
 
 /// read_varint for streams of mostly one- and two-byte values (PVS gaps): those are decoded
 /// without a data-dependent branch — whether a gap takes one or two bytes is close to random,
@@ -82,6 +121,31 @@ class DeltaSource {
   const unsigned char* p_;
   const unsigned char* end_;
   std::uint64_t next_ = 0;  // smallest value the next element can have
+};
+
+/// A coded kDeltaList payload: exp-Golomb gaps of order k.
+class CodedListSource {
+ public:
+  explicit CodedListSource(const PayloadHeader& h) noexcept
+      : bits_(h.body, static_cast<std::size_t>(h.end - h.body),
+              static_cast<std::size_t>(h.blob_end - h.body)),
+        k_(h.orders) {}
+
+  bool next(std::uint64_t& v) noexcept {
+    std::uint64_t gap;
+    if (!bits_.code(k_, gap)) return false;
+    v = next_ + gap;
+    next_ = v + 1;
+    return true;
+  }
+  bool finish() const noexcept {
+    return bits_.at_padded_end() && next_ <= std::uint64_t{UINT32_MAX} + 1;
+  }
+
+ private:
+  BitReader bits_;
+  unsigned k_;
+  std::uint64_t next_ = 0;
 };
 
 /// The bit window of a kBitset payload, checked canonical: non-empty, first and last byte
@@ -152,15 +216,6 @@ class ArraySource {
   const std::uint32_t* p_;
 };
 
-/// Skips `n` varints; false when they run past `end`.
-bool skip_varints(const unsigned char*& p, const unsigned char* end, std::uint32_t n) noexcept {
-  for (std::uint32_t i = 0; i < n; ++i) {
-    std::uint32_t ignored;
-    if (!read_varint(p, end, ignored)) return false;
-  }
-  return true;
-}
-
 /// The `count` elements of `src` into out[0, written).
 template <class Source>
 URBANPVS_NOINLINE bool drain(Source src, std::uint32_t count, std::uint32_t* out,
@@ -175,14 +230,17 @@ URBANPVS_NOINLINE bool drain(Source src, std::uint32_t count, std::uint32_t* out
   return src.finish();
 }
 
+/// Calls f with the source of a full payload (plain list, coded list or bitset).
+template <class F>
+bool with_full_source(const PayloadHeader& h, F&& f) noexcept {
+  if (h.kind == PvsKind::kBitset) return f(BitsetSource(h));
+  if (h.coded) return f(CodedListSource(h));
+  return f(DeltaSource(h));
+}
+
 bool decode_full(const PayloadHeader& h, std::uint32_t* out, std::size_t capacity,
                  std::size_t& written) noexcept {
-  if (h.kind == PvsKind::kDeltaList) {
-    DeltaSource src(h);
-    return drain(src, h.count, out, capacity, written);
-  }
-  BitsetSource src(h);
-  return drain(src, h.count, out, capacity, written);
+  return with_full_source(h, [&](auto src) { return drain(src, h.count, out, capacity, written); });
 }
 
 /// The rarely touched state of a merge: the removal and addition streams. Kept out of line
@@ -218,10 +276,8 @@ template <class Source>
 URBANPVS_NOINLINE bool merge(Source src, std::uint32_t count, const DiffHeader& d,
                              std::uint32_t* out, std::size_t capacity,
                              std::size_t& written) noexcept {
-  const unsigned char* additions_begin = d.lists;
-  if (!skip_varints(additions_begin, d.end, d.removed)) return false;
-  DiffCursor c{GapStream(d.lists, additions_begin, d.removed),
-               GapStream(additions_begin, d.end, d.added), 0, 0};
+  DiffCursor c{{}, {}, 0, 0};
+  if (!open_diff_lists(d, c.removals, c.additions)) return false;
   if (!next_removal(c) || !c.additions.next(c.next_addition)) return false;
   std::size_t w = 0;
   std::uint64_t position = 0;
@@ -255,12 +311,8 @@ URBANPVS_NOINLINE bool merge(Source src, std::uint32_t count, const DiffHeader& 
 /// First step of a chain: merge straight from the full base payload.
 bool merge_full(const PayloadHeader& base, const DiffHeader& d, std::uint32_t* out,
                 std::size_t capacity, std::size_t& written) noexcept {
-  if (base.kind == PvsKind::kDeltaList) {
-    DeltaSource src(base);
-    return merge(src, base.count, d, out, capacity, written);
-  }
-  BitsetSource src(base);
-  return merge(src, base.count, d, out, capacity, written);
+  return with_full_source(
+      base, [&](auto src) { return merge(src, base.count, d, out, capacity, written); });
 }
 
 /// Number of elements below `object` in a list, and whether `object` is in it.
@@ -269,19 +321,25 @@ struct Rank {
   bool present = false;
 };
 
+/// rank_in_full of a delta list, plain or coded.
+template <class Source>
+bool rank_in_list(Source src, std::uint32_t count, std::uint32_t object, Rank& rank) noexcept {
+  for (std::uint32_t i = 0; i < count; ++i) {
+    std::uint64_t v;
+    if (!src.next(v)) return false;
+    if (v >= object) {  // sorted: stop at the first element not below `object`
+      rank = {i, v == object};
+      return true;
+    }
+  }
+  rank = {count, false};
+  return src.finish();
+}
+
 bool rank_in_full(const PayloadHeader& h, std::uint32_t object, Rank& rank) noexcept {
   if (h.kind == PvsKind::kDeltaList) {
-    DeltaSource src(h);
-    for (std::uint32_t i = 0; i < h.count; ++i) {
-      std::uint64_t v;
-      if (!src.next(v)) return false;
-      if (v >= object) {  // sorted: stop at the first element not below `object`
-        rank = {i, v == object};
-        return true;
-      }
-    }
-    rank = {h.count, false};
-    return src.finish();
+    if (h.coded) return rank_in_list(CodedListSource(h), h.count, object, rank);
+    return rank_in_list(DeltaSource(h), h.count, object, rank);
   }
   BitsetWindow w;
   if (!read_bitset(h, w)) return false;
@@ -304,10 +362,8 @@ bool rank_in_full(const PayloadHeader& h, std::uint32_t object, Rank& rank) noex
 
 /// Carries a rank in the reference list through one diff.
 bool rank_through_diff(const DiffHeader& d, std::uint32_t object, Rank& rank) noexcept {
-  const unsigned char* additions_begin = d.lists;
-  if (!skip_varints(additions_begin, d.end, d.removed)) return false;
-  GapStream removals(d.lists, additions_begin, d.removed);
-  GapStream additions(additions_begin, d.end, d.added);
+  GapStream removals, additions;
+  if (!open_diff_lists(d, removals, additions)) return false;
   std::uint64_t removed_below = 0;
   bool removed_self = false;
   for (std::uint64_t q;;) {
@@ -334,34 +390,83 @@ bool rank_through_diff(const DiffHeader& d, std::uint32_t object, Rank& rank) no
 
 }  // namespace
 
+std::uint64_t block_index_size(std::uint32_t cells, std::uint32_t shift) noexcept {
+  const std::uint64_t blocks = (std::uint64_t{cells} + (std::uint64_t{1} << shift) - 1) >> shift;
+  return 4 * blocks + 2 * (cells - blocks);
+}
+
+std::uint64_t cell_start(const PvsSection& section, std::uint32_t cell) noexcept {
+  if (!section.coded) return load_u32(section.offsets + 4 * std::size_t{cell});
+  if (cell == section.cell_count) return section.payload_size;
+  // Block b: a u32 start, then u16 offsets from it for its other cells (FORMAT.md).
+  const std::uint32_t shift = section.block_shift;
+  const std::size_t record = 4 + 2 * ((std::size_t{1} << shift) - 1);
+  const unsigned char* block = section.offsets + (std::size_t{cell} >> shift) * record;
+  const std::uint32_t i = cell & ((1u << shift) - 1);
+  return std::uint64_t{load_u32(block)} + (i == 0 ? 0 : load_u16(block + 2 + 2 * i));
+}
+
+bool payload_range(const PvsSection& section, std::uint32_t cell, std::uint32_t& begin,
+                   std::uint32_t& end) noexcept {
+  if (cell >= section.cell_count) return false;
+  const std::uint64_t b = cell_start(section, cell), e = cell_start(section, cell + 1);
+  if (b > e || e > section.payload_size) return false;
+  begin = static_cast<std::uint32_t>(b);
+  end = static_cast<std::uint32_t>(e);
+  return true;
+}
+
 bool read_payload_header(const PvsSection& section, std::uint32_t cell,
                          PayloadHeader& header) noexcept {
-  if (cell >= section.cell_count) return false;
-  const std::uint32_t begin = load_u32(section.offsets + 4 * std::size_t{cell});
-  const std::uint32_t end = load_u32(section.offsets + 4 * (std::size_t{cell} + 1));
-  if (begin > end || end > section.payload_size) return false;
+  std::uint32_t begin, end;
+  if (!payload_range(section, cell, begin, end) || begin == end) return false;
   const unsigned char* p = section.payload + begin;
   const unsigned char* stop = section.payload + end;
-  if (p == stop || *p > static_cast<unsigned char>(PvsKind::kDiff)) return false;
-  header.kind = static_cast<PvsKind>(*p++);
-  if (!read_varint(p, stop, header.count)) return false;
+  const unsigned kind_byte = *p++;
+  const unsigned kind = section.coded ? kind_byte & 3u : kind_byte;
+  const unsigned orders = section.coded ? kind_byte >> 2 : 0;
+  if (kind > static_cast<unsigned>(PvsKind::kDiff)) return false;
+  // Coded: a list's order is below 32 (bit 7 clear), a bitset has none; a diff's two 3-bit
+  // orders take every value.
+  if ((kind == static_cast<unsigned>(PvsKind::kDeltaList) && orders > kMaxExpGolombOrder) ||
+      (kind == static_cast<unsigned>(PvsKind::kBitset) && orders != 0)) {
+    return false;
+  }
+  header.kind = static_cast<PvsKind>(kind);
+  header.coded = section.coded;
+  header.orders = static_cast<std::uint8_t>(orders);
+  header.count = 0;  // a coded diff's is derived (resolve_chain)
+  if (!(section.coded && header.kind == PvsKind::kDiff) && !read_varint(p, stop, header.count)) {
+    return false;
+  }
   header.body = p;
   header.end = stop;
+  header.blob_end = section.payload + section.payload_size;
   return true;
 }
 
 bool read_diff_header(const PvsSection& section, std::uint32_t cell, const PayloadHeader& header,
                       DiffHeader& diff) noexcept {
   const unsigned char* p = header.body;
-  std::uint32_t zigzag;
-  if (!read_varint(p, header.end, zigzag) || !read_varint(p, header.end, diff.removed) ||
+  std::uint32_t code;
+  if (!read_varint(p, header.end, code) || !read_varint(p, header.end, diff.removed) ||
       !read_varint(p, header.end, diff.added)) {
     return false;
   }
-  diff.reference = decode_reference(cell, zigzag);
+  if (!header.coded) {
+    diff.reference = decode_reference(cell, code);
+  } else if (code < kNeighbourSlots) {
+    diff.reference = section.neighbours != nullptr ? section.neighbours[cell][code] : kNoCell;
+  } else {
+    diff.reference = decode_reference(cell, code - kNeighbourSlots);
+  }
   if (diff.reference >= section.cell_count || diff.reference == cell) return false;
+  diff.coded = header.coded;
+  diff.removed_order = static_cast<std::uint8_t>(header.orders & 7u);
+  diff.added_order = static_cast<std::uint8_t>(header.orders >> 3);
   diff.lists = p;
   diff.end = header.end;
+  diff.blob_end = header.blob_end;
   return true;
 }
 
@@ -372,6 +477,16 @@ bool resolve_chain(const PvsSection& section, std::uint32_t cell, Chain& chain) 
     if (!read_payload_header(section, current, chain.headers[step])) return false;
     if (chain.headers[step].kind != PvsKind::kDiff) {
       chain.diff_steps = step;
+      if (!section.coded) return true;
+      // Coded diffs carry no count: each is its reference's, minus removed, plus added.
+      for (std::uint32_t j = step; j-- > 0;) {
+        const std::uint64_t reference_count = chain.headers[j + 1].count;
+        const DiffHeader& d = chain.diffs[j];
+        if (d.removed > reference_count) return false;
+        const std::uint64_t count = reference_count - d.removed + d.added;
+        if (count > section.object_count) return false;
+        chain.headers[j].count = static_cast<std::uint32_t>(count);
+      }
       return true;
     }
     if (!read_diff_header(section, current, chain.headers[step], chain.diffs[step])) return false;
@@ -421,10 +536,8 @@ bool merge_decoded(const DiffHeader& diff, const std::uint32_t* reference, std::
 
 bool check_diff(const DiffHeader& diff, std::uint32_t count, const std::uint32_t* reference,
                 std::size_t reference_count, std::uint32_t object_count) noexcept {
-  const unsigned char* additions_begin = diff.lists;
-  if (!skip_varints(additions_begin, diff.end, diff.removed)) return false;
-  GapStream removals(diff.lists, additions_begin, diff.removed);
-  GapStream additions(additions_begin, diff.end, diff.added);
+  GapStream removals, additions;
+  if (!open_diff_lists(diff, removals, additions)) return false;
   std::uint64_t removal, addition;
   if (!removals.next(removal) || !additions.next(addition)) return false;
   // An addition equal to a kept entry would repeat it: it must sit on a removed position.
@@ -470,6 +583,10 @@ std::uint32_t decode_reference(std::uint32_t cell, std::uint32_t zigzag) noexcep
   return cell + d;
 }
 
+bool coded_reference_fits(std::uint32_t cell, std::uint32_t reference) noexcept {
+  return encode_reference(cell, reference) <= UINT32_MAX - kNeighbourSlots;
+}
+
 namespace {
 
 void append_gaps(std::vector<unsigned char>& out, const std::vector<std::uint32_t>& values) {
@@ -480,13 +597,35 @@ void append_gaps(std::vector<unsigned char>& out, const std::vector<std::uint32_
   }
 }
 
+void append_codes(BitWriter& bits, const std::vector<std::uint32_t>& values, unsigned k) {
+  std::uint64_t base = 0;
+  for (std::uint32_t v : values) {
+    bits.code(v - base, k);
+    base = std::uint64_t{v} + 1;
+  }
+}
+
+/// How much larger than a coded delta list a bitset may be and still be chosen (encode_full).
+constexpr double kCodedBitsetMargin = 1.25;
+
+/// Largest order of a diff's lists: 3 bits each in the kind byte.
+constexpr unsigned kMaxDiffOrder = 7;
+
 }  // namespace
 
-void encode_delta_list(const std::vector<std::uint32_t>& ids, std::vector<unsigned char>& out) {
+void encode_delta_list(const std::vector<std::uint32_t>& ids, bool coded,
+                       std::vector<unsigned char>& out) {
   out.clear();
-  out.push_back(static_cast<unsigned char>(PvsKind::kDeltaList));
+  std::uint64_t bits = 0;
+  const unsigned k = coded ? best_exp_golomb_order(ids, kMaxExpGolombOrder, bits) : 0;
+  out.push_back(static_cast<unsigned char>(static_cast<unsigned>(PvsKind::kDeltaList) | k << 2));
   append_varint(out, static_cast<std::uint32_t>(ids.size()));
-  append_gaps(out, ids);
+  if (!coded) {
+    append_gaps(out, ids);
+    return;
+  }
+  BitWriter writer(out);
+  append_codes(writer, ids, k);
 }
 
 void encode_bitset(const std::vector<std::uint32_t>& ids, std::vector<unsigned char>& out) {
@@ -505,19 +644,27 @@ void encode_bitset(const std::vector<std::uint32_t>& ids, std::vector<unsigned c
   }
 }
 
-void encode_full(const std::vector<std::uint32_t>& ids, std::vector<unsigned char>& out) {
-  encode_delta_list(ids, out);
+void encode_full(const std::vector<std::uint32_t>& ids, bool coded,
+                 std::vector<unsigned char>& out) {
+  encode_delta_list(ids, coded, out);
   if (ids.empty()) return;
   // Bitset bytes are known without encoding: compare before building it.
   const std::size_t bitset_bytes =
       1 + varint_size(static_cast<std::uint32_t>(ids.size())) + varint_size(ids.front() / 8) +
       varint_size(ids.back() / 8 - ids.front() / 8 + 1) + (ids.back() / 8 - ids.front() / 8 + 1);
-  if (bitset_bytes < out.size()) encode_bitset(ids, out);
+  // Coded lists of dense PVSs are about as small as a bitset (a present neighbour costs one bit
+  // in both) but decode bit by bit, several times slower than a bitset's bytes: the bitset wins
+  // unless it is kCodedBitsetMargin larger (Monaco's 1,145-object PVSs: README, "Real bakes").
+  const double limit = coded ? kCodedBitsetMargin * static_cast<double>(out.size())
+                             : static_cast<double>(out.size()) - 0.5;
+  if (static_cast<double>(bitset_bytes) <= limit) encode_bitset(ids, out);
 }
 
 void encode_diff(std::uint32_t cell, std::uint32_t reference,
+                 const std::array<std::uint32_t, 3>& neighbours,
                  const std::vector<std::uint32_t>& reference_ids,
-                 const std::vector<std::uint32_t>& ids, std::vector<unsigned char>& out) {
+                 const std::vector<std::uint32_t>& ids, bool coded,
+                 std::vector<unsigned char>& out) {
   std::vector<std::uint32_t> removed;  // positions in reference_ids
   std::vector<std::uint32_t> added;    // ids
   std::size_t i = 0, j = 0;
@@ -531,14 +678,31 @@ void encode_diff(std::uint32_t cell, std::uint32_t reference,
       ++j;
     }
   }
+  std::uint64_t ignored = 0;
+  const unsigned kr = coded ? best_exp_golomb_order(removed, kMaxDiffOrder, ignored) : 0;
+  const unsigned ka = coded ? best_exp_golomb_order(added, kMaxDiffOrder, ignored) : 0;
   out.clear();
-  out.push_back(static_cast<unsigned char>(PvsKind::kDiff));
-  append_varint(out, static_cast<std::uint32_t>(ids.size()));
-  append_varint(out, encode_reference(cell, reference));
+  out.push_back(
+      static_cast<unsigned char>(static_cast<unsigned>(PvsKind::kDiff) | kr << 2 | ka << 5));
+  if (!coded) {
+    append_varint(out, static_cast<std::uint32_t>(ids.size()));
+    append_varint(out, encode_reference(cell, reference));
+    append_varint(out, static_cast<std::uint32_t>(removed.size()));
+    append_varint(out, static_cast<std::uint32_t>(added.size()));
+    append_gaps(out, removed);
+    append_gaps(out, added);
+    return;
+  }
+  // Coded: no count (the reader derives it), and a neighbour's slot in place of a distance.
+  const auto slot = std::find(neighbours.begin(), neighbours.end(), reference);
+  append_varint(out, slot != neighbours.end()
+                         ? static_cast<std::uint32_t>(slot - neighbours.begin())
+                         : encode_reference(cell, reference) + kNeighbourSlots);
   append_varint(out, static_cast<std::uint32_t>(removed.size()));
   append_varint(out, static_cast<std::uint32_t>(added.size()));
-  append_gaps(out, removed);
-  append_gaps(out, added);
+  BitWriter writer(out);  // one stream: removals, then additions
+  append_codes(writer, removed, kr);
+  append_codes(writer, added, ka);
 }
 
 }  // namespace urbanpvs::runtime::detail

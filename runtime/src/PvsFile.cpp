@@ -194,9 +194,12 @@ std::uint32_t PvsFile::locate_xy(double x, double y) const noexcept {
 }
 
 std::uint32_t PvsFile::pvs_size(std::uint32_t cell) const noexcept {
-  detail::PayloadHeader header;
-  if (!data_ || !detail::read_payload_header(data_->pvs.section, cell, header)) return 0;
-  return header.count;
+  if (IndexSpan span; pvs_span(cell, span) == Status::kOk)
+    return static_cast<std::uint32_t>(span.size);
+  // A coded diff's size is derived along its chain (FORMAT.md, "5 — pvs, coded").
+  detail::Chain chain;
+  if (!data_ || !detail::resolve_chain(data_->pvs.section, cell, chain)) return 0;
+  return chain.headers[0].count;
 }
 
 std::uint32_t PvsFile::max_pvs_size() const noexcept {
@@ -252,9 +255,10 @@ Status PvsFile::pvs_encoding(std::uint32_t cell, PvsEncodingInfo& out) const noe
   out.kind = static_cast<std::uint8_t>(h.kind);
   out.reference = chain.diff_steps > 0 ? chain.diffs[0].reference : kNoCell;
   out.chain_length = chain.diff_steps;
-  const std::uint32_t begin = detail::load_u32(data_->pvs.section.offsets + 4 * std::size_t{cell});
-  const std::uint32_t end =
-      detail::load_u32(data_->pvs.section.offsets + 4 * (std::size_t{cell} + 1));
+  std::uint32_t begin = 0, end = 0;
+  if (!detail::payload_range(data_->pvs.section, cell, begin, end)) {
+    return Status::kMalformedSection;
+  }
   out.payload_bytes = end - begin;
   return Status::kOk;
 }

@@ -13,11 +13,13 @@ namespace urbanpvs::runtime::detail {
 namespace {
 
 constexpr std::size_t kHeaderSize = 8;  // cell count u32, max chain u32
+/// Coded (2.2): cell count, max chain, block shift, payload size, all u32.
+constexpr std::size_t kCodedHeaderSize = 16;
 
 /// Breadth-first order over the neighbour graph (components in index order), so a cell's
 /// already-encoded neighbours — its best diff references — are close in space.
-std::vector<std::uint32_t> processing_order(const std::vector<CellRecord>& cells) {
-  const std::size_t n = cells.size();
+std::vector<std::uint32_t> processing_order(const std::vector<Neighbours>& neighbours) {
+  const std::size_t n = neighbours.size();
   std::vector<std::uint32_t> order;
   order.reserve(n);
   std::vector<char> seen(n, 0);
@@ -30,7 +32,7 @@ std::vector<std::uint32_t> processing_order(const std::vector<CellRecord>& cells
       const std::uint32_t c = queue.front();
       queue.pop_front();
       order.push_back(c);
-      for (std::uint32_t nb : cells[c].neighbours) {
+      for (std::uint32_t nb : neighbours[c]) {
         if (nb != kNoCell && !seen[nb]) {
           seen[nb] = 1;
           queue.push_back(nb);
@@ -47,8 +49,11 @@ std::vector<std::uint32_t> processing_order(const std::vector<CellRecord>& cells
 /// would be slightly smaller, which keeps later diffs short.
 class PayloadPlanner {
  public:
-  PayloadPlanner(const std::vector<CellRecord>& cells, const EncodeOptions& options)
+  PayloadPlanner(const std::vector<CellRecord>& cells, const std::vector<Neighbours>& neighbours,
+                 const EncodeOptions& options, bool coded)
       : cells_(cells),
+        neighbours_(neighbours),
+        coded_(coded),
         max_chain_(std::min(options.max_diff_chain, format::kMaxDiffChain)),
         threshold_(options.diff_threshold),
         reference_(cells.size(), kNoCell),
@@ -58,7 +63,7 @@ class PayloadPlanner {
   std::vector<std::vector<unsigned char>> plan() {
     std::vector<std::vector<unsigned char>> payloads(cells_.size());
     std::uint32_t previous = kNoCell;
-    for (std::uint32_t cell : processing_order(cells_)) {
+    for (std::uint32_t cell : processing_order(neighbours_)) {
       payloads[cell] = encode_cell(cell, previous);
       done_[cell] = 1;
       previous = cell;
@@ -71,13 +76,16 @@ class PayloadPlanner {
  private:
   std::vector<unsigned char> encode_cell(std::uint32_t cell, std::uint32_t previous) {
     std::vector<unsigned char> full;
-    encode_full(cells_[cell].pvs, full);
+    encode_full(cells_[cell].pvs, coded_, full);
     if (max_chain_ == 0) return full;
     std::vector<unsigned char> best, diff;
     std::uint32_t best_reference = kNoCell;
     for (std::uint32_t candidate : candidates(cell, previous)) {
-      if (depth_[candidate] >= max_chain_) continue;
-      encode_diff(cell, candidate, cells_[candidate].pvs, cells_[cell].pvs, diff);
+      if (depth_[candidate] >= max_chain_ || (coded_ && !coded_reference_fits(cell, candidate))) {
+        continue;
+      }
+      encode_diff(cell, candidate, neighbours_[cell], cells_[candidate].pvs, cells_[cell].pvs,
+                  coded_, diff);
       if (best_reference == kNoCell || diff.size() < best.size()) {
         best.swap(diff);
         best_reference = candidate;
@@ -96,7 +104,7 @@ class PayloadPlanner {
   /// fixed order (so the output is deterministic).
   std::vector<std::uint32_t> candidates(std::uint32_t cell, std::uint32_t previous) const {
     std::vector<std::uint32_t> out;
-    const auto& nbs = cells_[cell].neighbours;
+    const Neighbours& nbs = neighbours_[cell];
     for (std::uint32_t start : {nbs[0], nbs[1], nbs[2], previous}) {
       if (start == kNoCell || !done_[start]) continue;
       for (std::uint32_t c = start; c != kNoCell; c = reference_[c]) {
@@ -107,6 +115,8 @@ class PayloadPlanner {
   }
 
   const std::vector<CellRecord>& cells_;
+  const std::vector<Neighbours>& neighbours_;
+  bool coded_;
   std::uint32_t max_chain_;
   double threshold_;
   std::vector<std::uint32_t> reference_;
@@ -122,7 +132,8 @@ struct PvsValidation {
   const PvsSection& section;
   std::uint32_t object_count;
   std::vector<std::uint32_t> reference;  ///< per cell: its diff reference, or kNoCell
-  std::vector<std::uint32_t> count;      ///< per cell: its header's PVS size (true after check_all)
+  std::vector<std::uint32_t>
+      count;  ///< per cell: its PVS size, stored or derived (true after check_all)
   std::vector<std::uint32_t> first_child;  ///< cell_count + 1 offsets into `children`
   std::vector<std::uint32_t> children;
   std::size_t half = 1;                     ///< slots per level buffer (>= the largest PVS)
@@ -144,6 +155,38 @@ struct PvsValidation {
   }
 
   bool has_children(std::uint32_t cell) const { return first_child[cell + 1] > first_child[cell]; }
+
+  /// The counts of coded diffs, each its reference's - removed + added, top-down from the full
+  /// cells. A cell not reached is on a cycle of references.
+  bool derive_counts(const std::vector<std::array<std::uint32_t, 2>>& edits, const char*& detail) {
+    std::vector<std::uint32_t> stack;
+    std::size_t reached = 0;
+    for (std::uint32_t root = 0; root < reference.size(); ++root) {
+      if (reference[root] != kNoCell) continue;
+      stack.push_back(root);
+      while (!stack.empty()) {
+        const std::uint32_t cell = stack.back();
+        stack.pop_back();
+        ++reached;
+        for (std::uint32_t k = first_child[cell]; k < first_child[cell + 1]; ++k) {
+          const std::uint32_t child = children[k];
+          const auto [removed, added] = edits[child];
+          const std::uint64_t n = std::uint64_t{count[cell]} - removed + added;
+          if (removed > count[cell] || n > object_count) {
+            detail = "pvs: diff removes more than its reference holds or exceeds the objects";
+            return false;
+          }
+          count[child] = static_cast<std::uint32_t>(n);
+          stack.push_back(child);
+        }
+      }
+    }
+    if (reached != reference.size()) {
+      detail = "pvs: bad diff reference chain";
+      return false;
+    }
+    return true;
+  }
 
   /// A decoded list: strictly increasing and below object_count.
   bool valid_list(const std::uint32_t* list, std::size_t n) const {
@@ -176,7 +219,7 @@ struct PvsValidation {
         return false;
       }
       if (!has_children(child)) {
-        if (!check_diff(diff, header.count, list, n, object_count)) {
+        if (!check_diff(diff, count[child], list, n, object_count)) {
           detail = "pvs: diff does not give an ascending list of its size in range";
           return false;
         }
@@ -184,7 +227,7 @@ struct PvsValidation {
       }
       std::uint32_t* next = levels.get() + (level + 1) * half;
       std::size_t m = 0;
-      if (!merge_decoded(diff, list, n, next, half, m) || m != header.count) {
+      if (!merge_decoded(diff, list, n, next, half, m) || m != count[child]) {
         detail = "pvs: cell payload does not decode";
         return false;
       }
@@ -259,47 +302,108 @@ struct PvsValidation {
 
 }  // namespace
 
+namespace {
+
+/// The largest block shift whose blocks all keep their cells' starts within 65,535 bytes of the
+/// block's first: fewer u32 starts, and shift 0 always fits.
+std::uint32_t block_shift_for(const std::vector<std::uint64_t>& starts) {
+  const std::size_t n = starts.size() - 1;  // starts[n] is the payload size
+  for (std::uint32_t shift = kMaxBlockShift; shift > 0; --shift) {
+    bool fits = true;
+    for (std::size_t b = 0; fits && b < n; b += std::size_t{1} << shift) {
+      const std::size_t last = std::min(n, b + (std::size_t{1} << shift)) - 1;
+      fits = starts[last] - starts[b] <= 0xFFFF;
+    }
+    if (fits) return shift;
+  }
+  return 0;
+}
+
+}  // namespace
+
 std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
-                                     const EncodeOptions& options) {
-  PayloadPlanner planner(cells, options);
+                                     const std::vector<Neighbours>& neighbours,
+                                     const EncodeOptions& options, bool coded) {
+  PayloadPlanner planner(cells, neighbours, options, coded);
   const std::vector<std::vector<unsigned char>> payloads = planner.plan();
+  std::vector<std::uint64_t> starts(payloads.size() + 1, 0);
+  for (std::size_t c = 0; c < payloads.size(); ++c) {
+    starts[c + 1] = starts[c] + payloads[c].size();
+    if (starts[c + 1] > UINT32_MAX) throw PvsWriteError("pvs: encoded PVS data exceeds 4 GiB");
+  }
   ByteWriter w;
   w.u32(static_cast<std::uint32_t>(cells.size()));
   w.u32(planner.max_chain());
-  std::uint64_t offset = 0;
-  w.u32(0);
-  for (const auto& p : payloads) {
-    offset += p.size();
-    if (offset > UINT32_MAX) throw PvsWriteError("pvs: encoded PVS data exceeds 4 GiB");
-    w.u32(static_cast<std::uint32_t>(offset));
+  if (coded) {
+    const std::uint32_t shift = block_shift_for(starts);
+    w.u32(shift);
+    w.u32(static_cast<std::uint32_t>(starts.back()));
+    const std::size_t block = std::size_t{1} << shift;
+    for (std::size_t c = 0; c < payloads.size(); ++c) {
+      const std::size_t first = c & ~(block - 1);
+      if (c == first) {
+        w.u32(static_cast<std::uint32_t>(starts[c]));
+      } else {
+        w.u16(static_cast<std::uint16_t>(starts[c] - starts[first]));
+      }
+    }
+  } else {
+    for (std::uint64_t start : starts) w.u32(static_cast<std::uint32_t>(start));
   }
   for (const auto& p : payloads) w.raw(p.data(), p.size());
   return std::move(w.bytes());
 }
 
-bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_t object_count,
-              PvsView& out, PvsExpansion* expansion, const char*& detail) {
+namespace {
+
+/// The section header and index: fills `s` (but the payload check of every cell is
+/// read_payload_header's) and `declared_chain`.
+bool read_pvs_index(const SectionBytesView& in, std::uint32_t cell_count, bool coded, PvsSection& s,
+                    std::uint32_t& declared_chain, const char*& detail) {
   ByteReader r(in.data, in.size);
-  std::uint32_t count, declared_chain;
-  std::uint64_t offsets_size;
+  std::uint32_t count, shift = 0, payload_size = 0;
+  std::uint64_t index_size;
   if (!r.u32(count) || !r.u32(declared_chain) || count != cell_count ||
       declared_chain > format::kMaxDiffChain ||
-      !checked_mul(std::uint64_t{count} + 1, 4, offsets_size) || offsets_size > r.remaining()) {
+      (coded && (!r.u32(shift) || !r.u32(payload_size) || shift > kMaxBlockShift))) {
     detail = "pvs: bad header (cell count or chain length)";
     return false;
   }
-  PvsSection& s = out.section;
+  if (coded) {
+    index_size = block_index_size(count, shift);
+  } else if (!checked_mul(std::uint64_t{count} + 1, 4, index_size)) {
+    index_size = UINT64_MAX;
+  }
+  if (index_size > r.remaining()) {
+    detail = "pvs: bad header (cell count or chain length)";
+    return false;
+  }
   s.cell_count = count;
-  s.object_count = object_count;
-  s.offsets = in.data + kHeaderSize;
-  s.payload = s.offsets + offsets_size;
-  const std::uint64_t available = r.remaining() - offsets_size;
-  s.payload_size = load_u32(s.offsets + 4 * std::size_t{count});
-  if (load_u32(s.offsets) != 0 || s.payload_size > available ||
-      (s.payload_size != available && !in.allow_extension)) {
+  s.coded = coded;
+  s.block_shift = shift;
+  s.offsets = in.data + (coded ? kCodedHeaderSize : kHeaderSize);
+  s.payload = s.offsets + index_size;
+  const std::uint64_t available = r.remaining() - index_size;
+  s.payload_size = coded ? payload_size : load_u32(s.offsets + 4 * std::size_t{count});
+  if ((count > 0 && cell_start(s, 0) != 0) || (!coded && load_u32(s.offsets) != 0) ||
+      s.payload_size > available || (s.payload_size != available && !in.allow_extension)) {
     detail = "pvs: offsets do not match the section length";
     return false;
   }
+  return true;
+}
+
+}  // namespace
+
+bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_t object_count,
+              bool coded, const Neighbours* neighbours, PvsView& out, PvsExpansion* expansion,
+              const char*& detail) {
+  PvsSection& s = out.section;
+  std::uint32_t declared_chain = 0;
+  if (!read_pvs_index(in, cell_count, coded, s, declared_chain, detail)) return false;
+  s.object_count = object_count;
+  s.neighbours = neighbours;
+  const std::uint32_t count = s.cell_count;
   // Pass 1, in file order: each cell's header, size and reference, so pass 2 knows its scratch
   // size and the tree of references.
   out.max_pvs_size = 0;
@@ -307,6 +411,8 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
   PvsValidation v(s, object_count);
   v.reference.resize(count);
   v.count.resize(count);
+  std::vector<std::array<std::uint32_t, 2>> edits;  // coded diffs: removed, added
+  if (s.coded) edits.resize(count);
   for (std::uint32_t cell = 0; cell < count; ++cell) {
     PayloadHeader header;
     DiffHeader diff;
@@ -315,16 +421,22 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
       detail = "pvs: bad cell payload header";
       return false;
     }
-    v.reference[cell] = header.kind == format::PvsKind::kDiff ? diff.reference : kNoCell;
+    const bool is_diff = header.kind == format::PvsKind::kDiff;
+    v.reference[cell] = is_diff ? diff.reference : kNoCell;
     v.count[cell] = header.count;
-    out.max_pvs_size = std::max(out.max_pvs_size, header.count);
-    out.total_entries += header.count;
+    if (s.coded && is_diff) edits[cell] = {diff.removed, diff.added};
+  }
+  v.index_children();
+  // A coded diff's count is derived from its reference's: from the full cells down.
+  if (s.coded && !v.derive_counts(edits, detail)) return false;
+  for (std::uint32_t c : v.count) {
+    out.max_pvs_size = std::max(out.max_pvs_size, c);
+    out.total_entries += c;
   }
   // Pass 2: every cell once, from its full base down the tree of diffs that refer to it (each
   // full list decoded once, not once per cell that refers to it). A cell it does not reach is
   // on a cycle of references; one deeper than the declared bound is too far from its base.
   // After this the query functions can only meet data that decodes cleanly.
-  v.index_children();
   v.half = std::max<std::size_t>(out.max_pvs_size, 1);
   v.max_depth = declared_chain;
   v.levels.reset(new std::uint32_t[(std::size_t{declared_chain} + 1) * v.half]);

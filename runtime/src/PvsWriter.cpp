@@ -82,6 +82,28 @@ std::string validate_cell(const CellRecord& c, std::size_t i, std::size_t cells,
   return {};
 }
 
+/// The neighbours the diffs are planned over. A coded PVS names a reference by its slot among
+/// the neighbours a reader derives from the cells section (they can differ from the bake's, e.g.
+/// for cells whose vertices round to the same millimetre), so they are read back from the
+/// section just written; otherwise the bake's own.
+std::vector<detail::Neighbours> reader_neighbours(const PvsBake& bake,
+                                                  const std::vector<detail::SectionBytes>& sections,
+                                                  bool coded) {
+  if (!coded) {
+    std::vector<detail::Neighbours> out;
+    out.reserve(bake.cells.size());
+    for (const CellRecord& c : bake.cells) out.push_back(c.neighbours);
+    return out;
+  }
+  const std::vector<unsigned char>& cells = sections.back().second;
+  detail::CellTable table;
+  const char* problem = "";
+  if (!detail::read_cells_v2({cells.data(), cells.size(), false}, table, problem)) {
+    throw PvsWriteError(std::string("cells: cannot read back what was written: ") + problem);
+  }
+  return std::move(table.neighbours);
+}
+
 }  // namespace
 
 std::string validate(const PvsBake& bake) {
@@ -132,14 +154,19 @@ std::vector<std::byte> encode(const PvsBake& bake, const EncodeOptions& options)
     sections.emplace_back(static_cast<std::uint32_t>(SectionId::kCells),
                           detail::write_cells_v2(bake.cells, options));
   }
-  sections.emplace_back(static_cast<std::uint32_t>(SectionId::kPvs),
-                        detail::write_pvs(bake.cells, options));
+  const bool coded = options.format_major >= 2 && options.pvs_coding == PvsCoding::kExpGolomb;
+  sections.emplace_back(
+      static_cast<std::uint32_t>(SectionId::kPvs),
+      detail::write_pvs(bake.cells, reader_neighbours(bake, sections, coded), options, coded));
   if (payloads) {
     sections.emplace_back(static_cast<std::uint32_t>(SectionId::kPayloads),
                           detail::write_payloads(bake.payload_key, bake.objects));
   }
-  // The lowest minor that holds what the file uses: without payloads it is a 2.0 file.
-  return detail::write_container(sections, options.format_major, payloads ? 1 : 0);
+  // The lowest minor that holds what the file uses: a coded PVS is 2.2, payloads alone 2.1,
+  // neither 2.0 (byte for byte what a 2.0 writer gave).
+  const std::uint16_t minor = coded ? 2 : payloads ? 1 : 0;
+  return detail::write_container(sections, options.format_major, minor,
+                                 coded ? format::kFeatureCodedPvs : 0);
 }
 
 }  // namespace urbanpvs::runtime

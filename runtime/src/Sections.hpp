@@ -114,8 +114,14 @@ struct PvsView {
   std::uint32_t max_chain = 0;  ///< longest diff chain actually present
   std::uint64_t total_entries = 0;
 };
+/// A cell's neighbours, as the cells section gives them.
+using Neighbours = std::array<std::uint32_t, 3>;
+/// `coded`: the 2.2 layout (exp-Golomb gaps, block index, neighbour-slot references), else the
+/// 2.0 one. `neighbours` (one per cell) are the ones a reader will see: the candidates of diff
+/// references, and in the coded layout the targets of their slots.
 std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
-                                     const EncodeOptions& options);
+                                     const std::vector<Neighbours>& neighbours,
+                                     const EncodeOptions& options, bool coded);
 /// Every cell's PVS decoded into one array (LoadOptions::expand_pvs): cell c is
 /// `ids[offsets[c], offsets[c + 1])`.
 struct PvsExpansion {
@@ -125,7 +131,10 @@ struct PvsExpansion {
 };
 /// Decodes every cell once: sorted, in range, counts consistent, chains within bounds. When
 /// `expansion` is given, keeps the decoded lists there.
+/// `coded`: the file sets format::kFeatureCodedPvs, and `neighbours` (cell_count entries, the
+/// cells section's) are what its diffs' neighbour slots name.
 bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_t object_count,
-              PvsView& out, PvsExpansion* expansion, const char*& detail);
+              bool coded, const Neighbours* neighbours, PvsView& out, PvsExpansion* expansion,
+              const char*& detail);
 
 }  // namespace urbanpvs::runtime::detail

@@ -349,12 +349,14 @@ JSON
 
 payloads)
   # --payload NAME carries a property into the file: strings as given, numbers as JSON text,
-  # nothing for a building without it; the file is 2.1 and says where the values came from.
+  # nothing for a building without it; the file says where the values came from. Its version
+  # is the lowest that holds it: 2.2 for the default coded PVS, 2.1 (payloads) or 2.0 (none)
+  # with --pvs-coding varint.
   write_tiles
   "$preprocess" tiles.geojson -o tiles.pvs --max-cell-edge 20 --epsilon 2 --payload tile --quiet ||
     fail "the bake with --payload failed"
   "$inspect" tiles.pvs > summary.txt
-  grep -q 'format:      2.1' summary.txt || fail "not a 2.1 file: $(cat summary.txt)"
+  grep -q 'format:      2.2' summary.txt || fail "not a 2.2 file: $(cat summary.txt)"
   grep -q 'payloads:    2 of 3 objects, from "tile"' summary.txt ||
     fail "payloads not counted: $(cat summary.txt)"
   "$inspect" tiles.pvs --json > dump.json
@@ -362,7 +364,17 @@ payloads)
   grep -q '"id":"b","payload":"42"' dump.json || fail "number payload not its JSON text"
   grep -q '"id":"c","payload":""' dump.json || fail "a building without the property has a payload"
   "$preprocess" tiles.geojson -o plain.pvs --max-cell-edge 20 --epsilon 2 --quiet
-  "$inspect" plain.pvs | grep -q 'format:      2.0' || fail "a bake without --payload is not 2.0"
+  "$inspect" plain.pvs | grep -q 'format:      2.2' || fail "a default bake is not 2.2"
+  "$preprocess" tiles.geojson -o old.pvs --max-cell-edge 20 --epsilon 2 --quiet \
+    --pvs-coding varint
+  "$inspect" old.pvs | grep -q 'format:      2.0' || fail "a varint bake without --payload is not 2.0"
+  "$preprocess" tiles.geojson -o old1.pvs --max-cell-edge 20 --epsilon 2 --quiet \
+    --pvs-coding varint --payload tile
+  "$inspect" old1.pvs | grep -q 'format:      2.1' || fail "a varint bake with --payload is not 2.1"
+  "$inspect" old1.pvs --json > old1.json
+  grep -q '"id":"a","payload":"t/0/1"' old1.json || fail "2.1 payload lost"
+  sed 's/"minor":1/"minor":2/' old1.json | cmp - dump.json ||
+    fail "the varint and exp-golomb files of one bake do not hold the same"
   "$preprocess" tiles.geojson -o none.pvs --max-cell-edge 20 --epsilon 2 --payload nosuch \
     --report none.json 2> stderr.txt || fail "the bake with an unknown --payload failed"
   grep -q '  warning:     --payload nosuch: no object has this attribute, property or tag' stderr.txt ||

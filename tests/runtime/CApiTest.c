@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* The C API from a translation unit compiled as C99: open a golden file (v1_0.pvs, or v2_1.pvs
- * with payloads), locate, decode. */
+/* The C API from a translation unit compiled as C99: open a golden file (v1_0.pvs, v2_1.pvs
+ * with payloads or v2_2.pvs with payloads and the coded PVS), locate, decode. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,16 +1,18 @@
 // SPDX-License-Identifier: MIT
-// White-box tests of the encoding primitives: varints, diff references, grid mapping, the
-// triangle predicate.
+// White-box tests of the encoding primitives: varints, exp-Golomb codes, diff references, grid
+// mapping, the triangle predicate.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 #include <vector>
 
 #include "ByteReader.hpp"
 #include "ByteWriter.hpp"
+#include "ExpGolomb.hpp"
 #include "PointLocationGrid.hpp"
 #include "PvsCodec.hpp"
 #include "urbanpvs/runtime/Types.hpp"
@@ -47,6 +49,90 @@ TEST(Varint, RejectsTruncatedOverlongAndOversized) {
   EXPECT_FALSE(decode({0xFF, 0xFF, 0xFF, 0xFF, 0x8F, 0x01}, v));  // six bytes
   EXPECT_TRUE(decode({0xFF, 0xFF, 0xFF, 0xFF, 0x0F}, v));
   EXPECT_EQ(v, 0xFFFFFFFFu);
+}
+
+TEST(ExpGolomb, RoundTripsEveryOrderAndBoundaryGap) {
+  const std::uint64_t gaps[] = {
+      0, 1, 2, 3, 7, 8, 127, 128, 65535, 0xFFFFFFFFu, 0x1FFFFFFFFull - 0x80000000ull};
+  for (unsigned k = 0; k <= detail::kMaxExpGolombOrder; ++k) {
+    std::vector<unsigned char> bytes;
+    std::uint64_t bits = 0;
+    {
+      detail::BitWriter w(bytes);
+      for (std::uint64_t g : gaps) {
+        if (g + (std::uint64_t{1} << k) >= (std::uint64_t{1} << 33)) continue;
+        w.code(g, k);
+        bits += detail::exp_golomb_bits(g, k);
+      }
+    }
+    EXPECT_EQ(bytes.size(), (bits + 7) / 8) << "k " << k;
+    detail::BitReader r(bytes.data(), bytes.size());
+    for (std::uint64_t g : gaps) {
+      if (g + (std::uint64_t{1} << k) >= (std::uint64_t{1} << 33)) continue;
+      std::uint64_t back = 0;
+      ASSERT_TRUE(r.code(k, back)) << "k " << k << " gap " << g;
+      EXPECT_EQ(back, g);
+    }
+    EXPECT_EQ(r.position(), bits);
+    EXPECT_TRUE(r.at_padded_end());
+    std::uint64_t more;
+    EXPECT_FALSE(r.code(k, more));  // nothing but padding left
+  }
+  // Code lengths: 1 bit for a gap of 0 with order 0, 2n - k - 1 in general.
+  EXPECT_EQ(detail::exp_golomb_bits(0, 0), 1u);
+  EXPECT_EQ(detail::exp_golomb_bits(1, 0), 3u);
+  EXPECT_EQ(detail::exp_golomb_bits(0, 3), 4u);
+  EXPECT_EQ(detail::exp_golomb_bits(8, 3), 6u);
+}
+
+TEST(ExpGolomb, ReaderNeverReadsPastItsBytes) {
+  std::vector<unsigned char> bytes;
+  {
+    detail::BitWriter w(bytes);
+    w.code(1000, 2);
+  }
+  for (std::size_t cut = 0; cut < bytes.size(); ++cut) {
+    // A copy of exactly `cut` bytes on the heap: ASan sees any read past it.
+    std::unique_ptr<unsigned char[]> prefix(new unsigned char[std::max<std::size_t>(cut, 1)]);
+    std::copy(bytes.begin(), bytes.begin() + static_cast<long>(cut), prefix.get());
+    detail::BitReader r(prefix.get(), cut);
+    std::uint64_t g;
+    EXPECT_FALSE(r.code(2, g)) << cut;
+  }
+  // 64 zero bits and more: no code.
+  const std::vector<unsigned char> zeros(16, 0);
+  detail::BitReader r(zeros.data(), zeros.size());
+  std::uint64_t g;
+  EXPECT_FALSE(r.code(0, g));
+}
+
+TEST(ExpGolomb, BestOrderReportsItsOwnSize) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 500; ++trial) {
+    std::vector<std::uint32_t> values;
+    const std::uint32_t spread = 1u << (rng() % 20);
+    for (std::uint32_t v = rng() % spread; values.size() < 1 + rng() % 200; v += 1 + rng() % spread)
+      values.push_back(v);
+    std::uint64_t bits = 0;
+    const unsigned k = detail::best_exp_golomb_order(values, 7, bits);
+    ASSERT_LE(k, 7u);
+    std::uint64_t want = 0, base = 0;
+    for (std::uint32_t v : values) {
+      want += detail::exp_golomb_bits(v - base, k);
+      base = std::uint64_t{v} + 1;
+    }
+    EXPECT_EQ(bits, want);
+    // No order within [0, 7] is more than a bit per value better than the one chosen.
+    for (unsigned other = 0; other <= 7; ++other) {
+      std::uint64_t b = 0;
+      base = 0;
+      for (std::uint32_t v : values) {
+        b += detail::exp_golomb_bits(v - base, other);
+        base = std::uint64_t{v} + 1;
+      }
+      EXPECT_LE(bits, b + values.size()) << "trial " << trial << " k " << k << " vs " << other;
+    }
+  }
 }
 
 TEST(DiffReference, ZigzagIsABijectionAndSmallForNeighbours) {
@@ -107,19 +193,27 @@ TEST(Triangle, SharedEdgesLeaveNoCracks) {
 
 namespace {
 
-/// A diff payload body (after kind and count): reference, removed positions, added ids, each
-/// list gap-coded, exactly as FORMAT.md describes kind 2 — written here, not by the encoder, so
-/// that invalid diffs (collisions, positions past the reference) can be built too.
+/// The lists of a diff payload: removed positions, then added ids, each gap-coded as FORMAT.md
+/// describes kind 2 (varints, or exp-Golomb codes of orders kr and ka in one bit stream when
+/// `coded`) — written here, not by the encoder, so that invalid diffs (collisions, positions
+/// past the reference) can be built too.
 std::vector<unsigned char> diff_lists(const std::vector<std::uint32_t>& removed,
-                                      const std::vector<std::uint32_t>& added) {
+                                      const std::vector<std::uint32_t>& added, bool coded,
+                                      unsigned kr, unsigned ka) {
   std::vector<unsigned char> out;
+  detail::BitWriter bits(out);
   for (const auto* list : {&removed, &added}) {
     std::uint64_t base = 0;
     for (std::uint32_t v : *list) {
-      detail::append_varint(out, static_cast<std::uint32_t>(v - base));
+      if (coded) {
+        bits.code(v - base, list == &removed ? kr : ka);
+      } else {
+        detail::append_varint(out, static_cast<std::uint32_t>(v - base));
+      }
       base = std::uint64_t{v} + 1;
     }
   }
+  bits.flush();
   return out;
 }
 
@@ -145,12 +239,18 @@ TEST(CheckDiff, AgreesWithMergeAndTheAscendingCheck) {
     const std::uint64_t expected_size = ref.size() + added.size() - removed.size();
     const std::uint32_t declared =
         static_cast<std::uint32_t>(expected_size + (rng() % 10 == 0 ? 1 : 0));
-    const std::vector<unsigned char> lists = diff_lists(removed, added);
+    const bool coded = trial % 2 == 1;
+    const unsigned kr = rng() % 4, ka = rng() % 4;
+    const std::vector<unsigned char> lists = diff_lists(removed, added, coded, kr, ka);
     detail::DiffHeader d{};
+    d.coded = coded;
+    d.removed_order = static_cast<std::uint8_t>(kr);
+    d.added_order = static_cast<std::uint8_t>(ka);
     d.removed = static_cast<std::uint32_t>(removed.size());
     d.added = static_cast<std::uint32_t>(added.size());
     d.lists = lists.data();
     d.end = lists.data() + lists.size();
+    d.blob_end = d.end;
     std::vector<std::uint32_t> out(ref.size() + added.size() + 4);
     std::size_t n = 0;
     bool want = detail::merge_decoded(d, ref.data(), ref.size(), out.data(), out.size(), n) &&

@@ -467,4 +467,207 @@ TEST(Rejection, BadPvsEncodings) {
   expect_bad(edit_pvs([](Bytes& s) { put_u32(s, 8, 1); }));
 }
 
+// --- hand-made coded pvs sections (format 2.2), written from FORMAT.md ---------------------
+
+/// An LSB-first bit stream of exp-Golomb codes: g with order k is n - k - 1 zeros, a one, then
+/// the n - 1 low bits of v = g + 2^k (n = bit width of v), least significant first.
+class Codes {
+ public:
+  Codes& code(std::uint64_t g, unsigned k) {
+    const std::uint64_t v = g + (std::uint64_t{1} << k);
+    unsigned n = 0;
+    while ((v >> n) != 0) ++n;
+    for (unsigned i = 0; i + k + 1 < n; ++i) bit(0);
+    bit(1);
+    for (unsigned i = 0; i + 1 < n; ++i) bit((v >> i) & 1);
+    return *this;
+  }
+  /// Codes of the gaps of the increasing `values`.
+  Codes& gaps(std::initializer_list<std::uint32_t> values, unsigned k) {
+    std::uint64_t next = 0;
+    for (std::uint32_t v : values) {
+      code(v - next, k);
+      next = std::uint64_t{v} + 1;
+    }
+    return *this;
+  }
+  Codes& bit(std::uint64_t b) {
+    if (used_ % 8 == 0) bytes_.push_back(std::byte{0});
+    bytes_.back() |= static_cast<std::byte>(b << (used_ % 8));
+    ++used_;
+    return *this;
+  }
+  Bytes bytes() const { return bytes_; }
+
+ private:
+  Bytes bytes_;
+  unsigned used_ = 0;
+};
+
+Bytes cat(Bytes a, const Bytes& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+/// A coded delta list: kind byte k << 2, varint count, codes.
+Bytes coded_delta(unsigned k, std::initializer_list<std::uint32_t> ids) {
+  Bytes out{static_cast<std::byte>(k << 2)};
+  return cat(cat(out, varints({static_cast<std::uint32_t>(ids.size())})),
+             Codes().gaps(ids, k).bytes());
+}
+
+/// The reference code of a coded diff naming `ref` by its distance: zigzag(ref - cell) + 3
+/// (codes 0..2 are neighbour slots).
+std::uint32_t distance_code(std::uint32_t cell, std::uint32_t ref) {
+  const std::uint32_t d = ref - cell;
+  return ((d << 1) ^ (0u - (d >> 31))) + 3;
+}
+
+/// A coded diff: kind byte 2 | kr << 2 | ka << 5, varint reference code, varint r, varint a
+/// (no count: it is derived), then one bit stream.
+Bytes coded_diff(std::uint32_t reference_code, unsigned kr,
+                 std::initializer_list<std::uint32_t> removed, unsigned ka,
+                 std::initializer_list<std::uint32_t> added) {
+  Bytes out{static_cast<std::byte>(2 | kr << 2 | ka << 5)};
+  out = cat(out, varints({reference_code, static_cast<std::uint32_t>(removed.size()),
+                          static_cast<std::uint32_t>(added.size())}));
+  return cat(out, Codes().gaps(removed, kr).gaps(added, ka).bytes());
+}
+
+/// Header (cells, chain, block shift, payload size), then per block a u32 start and u16
+/// offsets from it, then the payloads.
+Bytes coded_section(const std::vector<Bytes>& payloads, std::uint32_t max_chain,
+                    std::uint32_t shift) {
+  Bytes out(16, std::byte{0}), index, blob;
+  put_u32(out, 0, static_cast<std::uint32_t>(payloads.size()));
+  put_u32(out, 4, max_chain);
+  put_u32(out, 8, shift);
+  std::uint32_t block_start = 0;
+  for (std::size_t c = 0; c < payloads.size(); ++c) {
+    const auto start = static_cast<std::uint32_t>(blob.size());
+    if (c % (std::size_t{1} << shift) == 0) {
+      block_start = start;
+      index.resize(index.size() + 4);
+      put_u32(index, index.size() - 4, start);
+    } else {
+      index.resize(index.size() + 2);
+      put_u16(index, index.size() - 2, static_cast<std::uint16_t>(start - block_start));
+    }
+    blob = cat(blob, payloads[c]);
+  }
+  put_u32(out, 12, static_cast<std::uint32_t>(blob.size()));
+  return cat(cat(out, index), blob);
+}
+
+/// The 2.2 golden file with this pvs section.
+Bytes with_coded(const Bytes& section) {
+  Bytes b = rt::encode(golden_bake(), golden_options(2, 2));
+  replace_section(b, kPvs, section);
+  return b;
+}
+
+/// The same content as HandMadeChainDecodesAsSpecified, coded. The golden cells are a strip of
+/// triangles: cell c's neighbours (GoldenTest) are 0: {-, 1, -}, 1: {2, -, 0}, 2: {-, 3, 1},
+/// 3: {4, -, 2}, 4: {-, 5, 3}, 5: {-, -, 4}; references name them by slot where they can.
+std::vector<Bytes> coded_chain() {
+  return {coded_delta(2, {1, 5, 9}),
+          coded_diff(2, 0, {0}, 3, {10}),                         // 1 -> 0, slot 2
+          coded_diff(2, 0, {}, 0, {0, 2}),                        // 2 -> 1, slot 2
+          coded_diff(distance_code(3, 2), 1, {0, 2}, 0, {}),      // 3 -> 2 by distance
+          coded_diff(2, 7, {2}, 5, {39}),                         // 4 -> 3, slot 2
+          coded_diff(distance_code(5, 0), 0, {0, 1, 2}, 0, {})};  // 5 -> 0 by distance
+}
+
+TEST(Rejection, HandMadeCodedChainDecodesAsSpecified) {
+  const std::vector<std::vector<std::uint32_t>> want = {{1, 5, 9},  {5, 9, 10}, {0, 2, 5, 9, 10},
+                                                        {2, 9, 10}, {2, 9, 39}, {}};
+  for (std::uint32_t shift : {0u, 1u, 2u, 4u}) {
+    SCOPED_TRACE("block shift " + std::to_string(shift));
+    const Bytes b = with_coded(coded_section(coded_chain(), 4, shift));
+    rt::PvsFile file;
+    rt::LoadError error;
+    ASSERT_EQ(rt::PvsFile::open(b.data(), b.size(), file, {}, &error), Status::kOk) << error.detail;
+    EXPECT_EQ(file.minor_version(), 2);
+    rt::PvsDecoder decoder(file);
+    for (std::uint32_t c = 0; c < 6; ++c) {
+      ASSERT_EQ(decoder.decode(c), Status::kOk);
+      EXPECT_EQ(std::vector<std::uint32_t>(decoder.begin(), decoder.end()), want[c]) << c;
+      EXPECT_EQ(file.pvs_size(c), want[c].size());
+      for (std::uint32_t o = 0; o < 40; ++o) {
+        EXPECT_EQ(file.is_visible(c, o),
+                  std::find(want[c].begin(), want[c].end(), o) != want[c].end());
+      }
+    }
+    rt::PvsEncodingInfo info;
+    ASSERT_EQ(file.pvs_encoding(4, info), Status::kOk);
+    EXPECT_EQ(info.payload_bytes, coded_chain()[4].size());
+  }
+  // The encoder's own 2.2 file decodes to the content of the plain one (GoldenTest checks both).
+  const Bytes ours = rt::encode(golden_bake(), golden_options(2, 2));
+  EXPECT_EQ(load(ours), Status::kOk);
+}
+
+TEST(Rejection, BadCodedPvsEncodings) {
+  auto expect_bad = [](const std::vector<Bytes>& payloads, std::uint32_t shift = 2) {
+    expect_malformed(with_coded(coded_section(payloads, 4, shift)), Status::kMalformedSection,
+                     kPvs);
+  };
+  const Bytes ok = coded_delta(0, {1});
+  auto cells = [&](const Bytes& first) { return std::vector<Bytes>{first, ok, ok, ok, ok, ok}; };
+  // A list's order of 32 (bit 7 set), order bits on a bitset, kind 3.
+  expect_bad(cells(cat(Bytes{std::byte{0x80}}, varints({0}))));
+  Bytes bitset = cat(Bytes{std::byte{1 | 4}}, varints({1, 0, 1}));
+  bitset.push_back(std::byte{2});
+  expect_bad(cells(bitset));
+  expect_bad(cells(cat(Bytes{std::byte{3}}, varints({0}))));
+  // Padding bits not zero, a trailing byte, a code that runs past the payload, ids out of range
+  // or wrapping past 2^32.
+  Bytes padded = coded_delta(0, {1});  // "01" then padding
+  padded.back() |= std::byte{0x80};
+  expect_bad(cells(padded));
+  expect_bad(cells(cat(coded_delta(0, {1}), Bytes{std::byte{0}})));
+  expect_bad(cells(cat(cat(Bytes{std::byte{0}}, varints({2})), Codes().gaps({3}, 0).bytes())));
+  expect_bad(cells(coded_delta(3, {120})));
+  expect_bad(cells(cat(cat(Bytes{std::byte{31 << 2}}, varints({2})),
+                       Codes().code(0xFFFFFFFFu, 31).code(1, 31).bytes())));
+  // A diff: removal past its reference, an addition equal to a kept id, a removal code cut
+  // short (the additions would begin inside it).
+  auto diffs = [&](const Bytes& d) { return std::vector<Bytes>{ok, d, ok, ok, ok, ok}; };
+  expect_bad(diffs(coded_diff(2, 0, {1}, 0, {})));
+  expect_bad(diffs(coded_diff(2, 1, {}, 1, {1})));
+  Bytes cut = coded_diff(2, 7, {0}, 0, {});
+  cut.pop_back();
+  expect_bad(diffs(cut));
+  // The derived count: more removals than the reference holds; a chain adding past the object
+  // count is caught as an index out of range.
+  expect_bad(diffs(coded_diff(2, 0, {0, 1}, 0, {})));
+  // References: an empty neighbour slot (cell 1's slot 1), slot 3 and up are distances (3:
+  // the cell itself), a distance out of range, a cycle through slots (0 <-> 1).
+  expect_bad(diffs(coded_diff(1, 0, {}, 0, {})));
+  expect_bad(diffs(coded_diff(3, 0, {}, 0, {})));
+  expect_bad(diffs(coded_diff(distance_code(1, 6), 0, {}, 0, {})));
+  expect_bad({coded_diff(1, 0, {}, 0, {}), coded_diff(2, 0, {}, 0, {}), ok, ok, ok, ok});
+  // Section level: block shift above 4, payload size not the section's, first start not 0,
+  // an index that goes back.
+  expect_bad(coded_chain(), 5);
+  Bytes base = coded_section(coded_chain(), 4, 2);
+  auto edited_section = [&](auto edit) {
+    Bytes s = base;
+    edit(s);
+    expect_malformed(with_coded(s), Status::kMalformedSection, kPvs);
+  };
+  edited_section([](Bytes& s) { put_u32(s, 12, 1000); });
+  edited_section([](Bytes& s) { put_u32(s, 16, 1); });
+  edited_section([](Bytes& s) { put_u16(s, 16 + 4 + 2, 1); });  // cell 2 starts before cell 1
+  // The feature bit decides the layout: a coded section without it, a plain one with it.
+  Bytes unmarked = rt::encode(golden_bake(), golden_options(2, 0));
+  replace_section(unmarked, kPvs, base);
+  expect_malformed(unmarked, Status::kMalformedSection, kPvs);
+  expect_malformed(with_coded(section_bytes(rt::encode(golden_bake(), golden_options(2, 0)), kPvs)),
+                   Status::kMalformedSection, kPvs);
+  // And a 1.x file may not ask for the coded PVS at all.
+  EXPECT_EQ(load(build(0, rt::format::kFeatureCodedPvs, golden_sections())),
+            Status::kUnsupportedFeature);
+}
+
 }  // namespace

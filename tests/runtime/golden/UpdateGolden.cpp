@@ -31,6 +31,10 @@ int main(int argc, char** argv) {
         rt::encode(urbanpvs::test::golden_bake_with_payloads(), urbanpvs::test::golden_options(2));
     rt::write_file_atomic(golden + "/v2_1.pvs", golden_v21);
     rt::write_file_atomic(corpus + "/golden_v2_1.pvs", golden_v21);
+    const auto golden_v22 = rt::encode(urbanpvs::test::golden_bake_with_payloads(),
+                                       urbanpvs::test::golden_options(2, 2));
+    rt::write_file_atomic(golden + "/v2_2.pvs", golden_v22);
+    rt::write_file_atomic(corpus + "/golden_v2_2.pvs", golden_v22);
     // Seeds: small files covering every section feature, so mutations start from valid input.
     rt::write_file_atomic(corpus + "/golden.pvs", golden_bytes);
     rt::write_file_atomic(corpus + "/empty.pvs", rt::encode(rt::PvsBake{}));
@@ -54,7 +58,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;
   }
-  std::printf("wrote %s/v1_0.pvs, v2_0.pvs, v2_1.pvs and the seeds in %s\n", golden.c_str(),
-              corpus.c_str());
+  std::printf("wrote %s/v1_0.pvs, v2_0.pvs, v2_1.pvs, v2_2.pvs and the seeds in %s\n",
+              golden.c_str(), corpus.c_str());
   return 0;
 }

@@ -7,9 +7,10 @@ namespace urbanpvs::test {
 
 using runtime::kNoCell;
 
-runtime::EncodeOptions golden_options(std::uint16_t major) {
+runtime::EncodeOptions golden_options(std::uint16_t major, std::uint16_t minor) {
   runtime::EncodeOptions options;
   options.format_major = major;
+  options.pvs_coding = minor == 2 ? runtime::PvsCoding::kExpGolomb : runtime::PvsCoding::kVarint;
   options.bbox_float32 = true;
   options.max_diff_chain = 1;
   options.diff_threshold = 1.0;

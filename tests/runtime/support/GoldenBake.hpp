@@ -22,9 +22,9 @@ runtime::PvsBake golden_bake_with_payloads();
 /// The payload golden_bake_with_payloads() gives object `object`.
 std::string golden_payload(std::uint32_t object);
 
-/// The options the golden files of format `major` were encoded with. Explicit, so that tuning
-/// the writer's default heuristics does not change the golden bytes (diff_threshold 1: cells 2
-/// and 4 are diffs).
-runtime::EncodeOptions golden_options(std::uint16_t major = 1);
+/// The options the golden files of format `major`.`minor` were encoded with. Explicit, so that
+/// tuning the writer's default heuristics does not change the golden bytes (diff_threshold 1:
+/// cells 2 and 4 are diffs). Minor 2 codes the PVS with exp-Golomb gaps; the others with varints.
+runtime::EncodeOptions golden_options(std::uint16_t major = 1, std::uint16_t minor = 0);
 
 }  // namespace urbanpvs::test

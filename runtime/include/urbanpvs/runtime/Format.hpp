@@ -19,21 +19,26 @@ inline constexpr unsigned char kMagic[8] = {0x89, 'U', 'P', 'V', 'S', '\r', '\n'
 /// required-feature bits the reader does not know (kKnownRequiredFeatures).
 /// 1.0: cells as float64 records, a stored point-location grid. 2.0: cells as an indexed mesh of
 /// quantized vertices, the grid built at load. 2.1: adds the optional payloads section; the
-/// writer marks a file 2.1 only when it has one, so other files stay 2.0 byte for byte.
+/// writer marks a file 2.1 only when it has one, so other files stay 2.0 byte for byte. 2.2: the
+/// coded PVS (kFeatureCodedPvs): exp-Golomb gaps and a block index of 16-bit offsets.
 inline constexpr std::uint16_t kMajorVersion = 2;
-inline constexpr std::uint16_t kMinorVersion = 1;
+inline constexpr std::uint16_t kMinorVersion = 2;
 inline constexpr std::uint16_t kOldestMajorVersion = 1;
 
-/// The newest minor version this reader knows of `major` (1.0 and 2.1 so far). Bytes appended
+/// The newest minor version this reader knows of `major` (1.0 and 2.2 so far). Bytes appended
 /// to known structures are tolerated only in files of a newer minor version.
 constexpr std::uint16_t latest_minor(std::uint16_t major) noexcept {
   return major == 1 ? 0 : kMinorVersion;
 }
 
-/// Required-feature bits understood by this reader. Versions 1.0 and 2.0 define none. A later minor
-/// version that changes the meaning of existing data (so that a 1.0 reader would answer wrongly)
-/// must set a new bit here; one that only appends optional data must not.
-inline constexpr std::uint32_t kKnownRequiredFeatures = 0;
+/// Required-feature bit 0 (format 2.2): the pvs section is the coded layout (FORMAT.md, "5 — pvs,
+/// coded"). A 2.0/2.1 reader would misread it, so it must refuse the file instead.
+inline constexpr std::uint32_t kFeatureCodedPvs = 1u << 0;
+
+/// Required-feature bits understood by this reader. Versions 1.0, 2.0 and 2.1 define none. A
+/// later minor version that changes the meaning of existing data (so that an older reader would
+/// answer wrongly) must set a new bit here; one that only appends optional data must not.
+inline constexpr std::uint32_t kKnownRequiredFeatures = kFeatureCodedPvs;
 
 /// Fixed part of the header, before the section table.
 inline constexpr std::uint32_t kFixedHeaderSize = 40;
@@ -56,9 +61,10 @@ enum class SectionId : std::uint32_t {
 /// Short lower-case name of a section id ("metadata", "objects", ...; "unknown" otherwise).
 const char* section_name(std::uint32_t id) noexcept;
 
-/// Cell PVS encodings (first byte of a cell's payload in the pvs section).
+/// Cell PVS encodings (first byte of a cell's payload in the pvs section; its two low bits in
+/// the coded layout, whose other bits hold the exp-Golomb orders).
 enum class PvsKind : std::uint8_t {
-  kDeltaList = 0,  ///< sorted ids as varint gaps
+  kDeltaList = 0,  ///< sorted ids as gaps (varints; exp-Golomb codes when coded)
   kBitset = 1,     ///< bit window over the object indices
   kDiff = 2,       ///< removals (positions) and additions (ids) against a reference cell
 };

@@ -64,6 +64,16 @@ struct PvsBake {
   std::string payload_key;
 };
 
+/// How the gaps of the PVS lists are coded.
+enum class PvsCoding : std::uint8_t {
+  /// Varint gaps and a u32 offset per cell: format 2.0/2.1, for readers of those versions.
+  kVarint,
+  /// Exp-Golomb gaps, their order chosen per list, derived diff counts, neighbour-slot diff
+  /// references and a block index of u16 offsets: format 2.2 (required feature
+  /// kFeatureCodedPvs). The PVS section is 25-38% smaller on the bakes of runtime/README.md.
+  kExpGolomb,
+};
+
 /// Encoding choices. The defaults are the measured best trade-off (see runtime/README.md).
 struct EncodeOptions {
   /// Store bounding boxes as float32 (rounded outwards, so boxes only grow: ≤ 0.5 mm at 4 km
@@ -82,6 +92,8 @@ struct EncodeOptions {
   /// vertices, the grid built at load) or 1 (float64 cell records and a stored grid, for
   /// engines that still ship a 1.x reader; this library reads both).
   std::uint16_t format_major = 2;
+  /// PVS coding of a format_major 2 file (1.0 files are always varint coded).
+  PvsCoding pvs_coding = PvsCoding::kExpGolomb;
 };
 
 /// Thrown by the writer; what() names the offending element and the reason, or the path.

@@ -20,6 +20,7 @@
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/settings/Setting.hpp"
 #include "urbanpvs/preprocess/bake/BakeScene.hpp"
+#include "urbanpvs/runtime/PvsWriter.hpp"
 
 namespace urbanpvs::preprocess {
 
@@ -34,6 +35,8 @@ struct PreprocessRequest {
   std::string report_file;  ///< JSON report; empty: none
   bool resume = false;      ///< continue from the journal when there is one
   bool quiet = false;       ///< no progress and no summary (errors are still printed)
+  /// How the file codes the PVS: exp-Golomb (format 2.2) or varint (2.0/2.1 readers).
+  runtime::PvsCoding pvs_coding = runtime::PvsCoding::kExpGolomb;
 };
 
 using geometry::exact;
