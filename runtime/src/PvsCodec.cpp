@@ -605,8 +605,9 @@ void append_codes(BitWriter& bits, const std::vector<std::uint32_t>& values, uns
   }
 }
 
-/// How much larger than a coded delta list a bitset may be and still be chosen (encode_full).
-constexpr double kCodedBitsetMargin = 1.25;
+/// How much larger than a coded delta list a bitset may be and still be chosen (encode_full):
+/// 5/4, as an exact ratio of integers.
+constexpr std::size_t kCodedBitsetMargin[2] = {5, 4};
 
 /// Largest order of a diff's lists: 3 bits each in the kind byte.
 constexpr unsigned kMaxDiffOrder = 7;
@@ -654,10 +655,11 @@ void encode_full(const std::vector<std::uint32_t>& ids, bool coded,
       varint_size(ids.back() / 8 - ids.front() / 8 + 1) + (ids.back() / 8 - ids.front() / 8 + 1);
   // Coded lists of dense PVSs are about as small as a bitset (a present neighbour costs one bit
   // in both) but decode bit by bit, several times slower than a bitset's bytes: the bitset wins
-  // unless it is kCodedBitsetMargin larger (Monaco's 1,145-object PVSs: README, "Real bakes").
-  const double limit = coded ? kCodedBitsetMargin * static_cast<double>(out.size())
-                             : static_cast<double>(out.size()) - 0.5;
-  if (static_cast<double>(bitset_bytes) <= limit) encode_bitset(ids, out);
+  // unless it is more than 5/4 of its size (Monaco's 1,145-object PVSs: README, "Real bakes").
+  const bool bitset =
+      coded ? bitset_bytes * kCodedBitsetMargin[1] <= out.size() * kCodedBitsetMargin[0]
+            : bitset_bytes < out.size();
+  if (bitset) encode_bitset(ids, out);
 }
 
 void encode_diff(std::uint32_t cell, std::uint32_t reference,
