@@ -71,7 +71,9 @@ std::uint64_t bake_fingerprint(std::uint64_t input_hash,
                                const std::vector<std::pair<std::string, std::string>>& settings,
                                std::size_t cells, std::size_t objects) {
   Fnv1a64 h;
-  h.add_string("urbanpvs bake fingerprint 1");
+  // The version of what a cell's PVS is, for the same settings: 2 tests objects by their
+  // outline (ObjectCulling), so a journal of version 1 must not be resumed into it.
+  h.add_string("urbanpvs bake fingerprint 2");
   h.add_u64(input_hash);
   h.add_u64(settings.size());
   for (const auto& [key, value] : settings) {

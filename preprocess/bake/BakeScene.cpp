@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "urbanpvs/geometry/city/ObjectOutline.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
 
@@ -83,6 +84,9 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   for (const geometry::ViewCell& c : mesh_.cells) zlo_ = std::min(zlo_, c.zmin - 1.0);
   zhi_ = all.zmax + 1000.0;
   object_index_ = BoxQuadtree(object_boxes(city.objects));
+  object_outlines_.reserve(city.objects.size());
+  for (const geometry::CityObject& o : city.objects)
+    object_outlines_.push_back(geometry::object_outline(o));
   occluder_index_ = BoxQuadtree(occluder_boxes(occluders_));
 }
 

@@ -79,7 +79,7 @@ std::vector<std::uint32_t> CellVisibility::brute_force(std::uint32_t cell, CellC
   c.objects_in_map += scene_.city().objects.size();
   c.shadows += stats.shadows;
   c.pixels_written += stats.pixels_written;
-  return visible_objects(map, scene_.city().objects);
+  return visible_objects(map, scene_.city().objects, scene_.object_outlines());
 }
 
 std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, CellCounters& c) {
@@ -95,6 +95,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
   box.top = vc.zmax;
   const std::vector<Vec3> samples = scene_.samples(cell);
   const auto& objects = scene_.city().objects;
+  const std::vector<geometry::Ring>& outlines = scene_.object_outlines();
   const BoxQuadtree& object_tree = scene_.object_index();
   const BoxQuadtree& occluder_tree = scene_.occluder_index();
   const CullMapGrid& area = scene_.area();
@@ -182,7 +183,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
                         if (object_decided_[o] == stamp_) return;
                         const geometry::Box3& b = objects[o].bbox;
                         if (last || inside_map(grid, b.xy)) {
-                          decide(o, !hidden_by(map, b));
+                          decide(o, !hidden_by(map, b, outlines[o]));
                           ++c.objects_in_map;
                         } else {
                           pending.push_back(o);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 #include "urbanpvs/preprocess/visibility/SightLine.hpp"
 
 namespace urbanpvs::preprocess {
@@ -32,11 +33,12 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
     return std::tie(a.distance, a.kind, a.id) > std::tie(b.distance, b.kind, b.id);
   };
   const auto& objects = scene_.city().objects;
+  const std::vector<geometry::Ring>& outlines = scene_.object_outlines();
   const BoxQuadtree& tree = scene_.occluder_index();
-  // The brute-force map decides an object by the centres of the pixels its box touches (thesis
-  // 7.2: with ε >= k·√2/2 a pixel centre speaks for the whole pixel). The horizons test the box
-  // through those centres, every point of it, and where that fails the centres themselves:
-  // whatever they hide, that map hides.
+  // The brute-force map decides an object by the centres of the pixels its outline touches
+  // (thesis 7.2: with ε >= k·√2/2 a pixel centre speaks for the whole pixel). The horizons test
+  // the box of the centres its box touches, every point of it, and where that fails the
+  // outline's centres themselves: whatever they hide, that map hides.
   const CullMapGrid& lattice = scene_.area();
   auto centre = [&](long long i, long long j) {
     return lattice.center(static_cast<int>(i), static_cast<int>(j));
@@ -54,8 +56,9 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
   auto points_hidden = [&](const SampleHorizon& h, std::uint32_t o) {
     const double top = objects[o].bbox.zmax;
     const auto r = lattice.touched(objects[o].bbox.xy);
-    for (long long j = r.j0; j <= r.j1; ++j)
-      for (long long i = r.i0; i <= r.i1; ++i) {
+    for (long long j = r.j0; j <= r.j1; ++j) {
+      const PixelSpan row = outline_row(lattice, outlines[o], r, j);
+      for (long long i = row.first; i <= row.last; ++i) {
         const Vec2 p = centre(i, j);
         if (h.hides_point(p, top)) continue;
         ++c.sight_lines;
@@ -63,6 +66,7 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
                                 kSightMargin))
           return false;
       }
+    }
     return true;
   };
   auto farthest = [&](const SampleHorizon& h, const geometry::Box2& b) {

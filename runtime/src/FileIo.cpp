@@ -12,11 +12,16 @@
 #include <string>
 #include <system_error>
 
+#include "HugePages.hpp"
 #include "urbanpvs/runtime/PvsWriter.hpp"
 
 namespace urbanpvs::runtime {
 
-Status read_file(const char* path, std::vector<std::byte>& out) noexcept {
+namespace {
+
+/// The whole file at `path` into `out` (any vector of bytes).
+template <class Bytes>
+Status read_whole_file(const char* path, Bytes& out) noexcept {
   out.clear();
   if (path == nullptr) return Status::kInvalidArgument;
   std::FILE* f = std::fopen(path, "rb");
@@ -39,9 +44,21 @@ Status read_file(const char* path, std::vector<std::byte>& out) noexcept {
     status = Status::kOutOfMemory;
   }
   std::fclose(f);
-  if (status != Status::kOk) out = std::vector<std::byte>();
+  if (status != Status::kOk) out = Bytes();
   return status;
 }
+
+}  // namespace
+
+Status read_file(const char* path, std::vector<std::byte>& out) noexcept {
+  return read_whole_file(path, out);
+}
+
+namespace detail {
+Status read_file_large(const char* path, LargeVector<std::byte>& out) noexcept {
+  return read_whole_file(path, out);
+}
+}  // namespace detail
 
 void write_file_atomic(const std::string& path, const void* data, std::size_t size) {
   namespace fs = std::filesystem;

@@ -22,19 +22,20 @@ constexpr std::uint64_t kEnd = UINT64_MAX;
 class GapStream {
  public:
   GapStream() noexcept = default;
-  /// `count` varints in [p, end).
-  GapStream(const unsigned char* p, const unsigned char* end, std::uint32_t count) noexcept
-      : p_(p), end_(end), left_(count) {}
+  /// `count` varints in [p, end); `last`: the stream must end after them.
+  GapStream(const unsigned char* p, const unsigned char* end, std::uint32_t count,
+            bool last) noexcept
+      : p_(p), end_(end), last_(last), left_(count) {}
   /// `count` codes of order k from `bits`; `last`: the stream must end after them.
   GapStream(const BitReader& bits, unsigned k, std::uint32_t count, bool last) noexcept
       : bits_(bits), k_(k), coded_(true), last_(last), left_(count) {}
 
-  /// Next value, or kEnd once `count` values were read (then the stream must be exactly at its
-  /// end). False on malformed data.
+  /// Next value, or kEnd once `count` values were read (then a `last` stream must be exactly at
+  /// its end). False on malformed data.
   bool next(std::uint64_t& value) noexcept {
     if (left_ == 0) {
       value = kEnd;
-      return coded_ ? !last_ || bits_.at_padded_end() : p_ == end_;
+      return !last_ || (coded_ ? bits_.at_padded_end() : p_ == end_);
     }
     std::uint64_t gap;
     if (coded_) {
@@ -51,6 +52,11 @@ class GapStream {
     return true;
   }
 
+  /// The `count` values that follow this stream's once they are all read (order k if coded).
+  GapStream following(unsigned k, std::uint32_t count, bool last) const noexcept {
+    return coded_ ? GapStream(bits_, k, count, last) : GapStream(p_, end_, count, last);
+  }
+
  private:
   const unsigned char* p_ = nullptr;
   const unsigned char* end_ = nullptr;
@@ -62,8 +68,23 @@ class GapStream {
   std::uint64_t base_ = 0;
 };
 
-/// The removals and the additions of a diff, each as a stream; false when the removals run
-/// past the payload.
+/// The removals of a diff; the additions are its following() stream once they are read.
+GapStream diff_removals(const DiffHeader& d) noexcept {
+  if (d.coded) {
+    const BitReader bits(d.lists, static_cast<std::size_t>(d.end - d.lists),
+                         static_cast<std::size_t>(d.blob_end - d.lists));
+    return GapStream(bits, d.removed_order, d.removed, false);
+  }
+  return GapStream(d.lists, d.end, d.removed, false);
+}
+
+/// The additions of a diff once `removals` (diff_removals) are read.
+GapStream diff_additions(const DiffHeader& d, const GapStream& removals) noexcept {
+  return removals.following(d.added_order, d.added, true);
+}
+
+/// The removals and the additions of a diff, each as a stream, for reading both at once (the
+/// removals are skipped to find the additions); false when the removals run past the payload.
 bool open_diff_lists(const DiffHeader& d, GapStream& removals, GapStream& additions) noexcept {
   if (d.coded) {
     BitReader bits(d.lists, static_cast<std::size_t>(d.end - d.lists),
@@ -78,8 +99,8 @@ bool open_diff_lists(const DiffHeader& d, GapStream& removals, GapStream& additi
     std::uint32_t ignored;
     if (!read_varint(additions_begin, d.end, ignored)) return false;
   }
-  removals = GapStream(d.lists, additions_begin, d.removed);
-  additions = GapStream(additions_begin, d.end, d.added);
+  removals = GapStream(d.lists, additions_begin, d.removed, true);
+  additions = GapStream(additions_begin, d.end, d.added, true);
   return true;
 }
 
@@ -535,31 +556,46 @@ bool merge_decoded(const DiffHeader& diff, const std::uint32_t* reference, std::
 }
 
 bool check_diff(const DiffHeader& diff, std::uint32_t count, const std::uint32_t* reference,
-                std::size_t reference_count, std::uint32_t object_count) noexcept {
-  GapStream removals, additions;
-  if (!open_diff_lists(diff, removals, additions)) return false;
-  std::uint64_t removal, addition;
-  if (!removals.next(removal) || !additions.next(addition)) return false;
+                std::size_t reference_count, std::uint32_t object_count, std::uint32_t* scratch,
+                std::size_t scratch_size) noexcept {
+  if (std::uint64_t{count} + diff.removed != reference_count + std::uint64_t{diff.added}) {
+    return false;
+  }
+  // One pass over the bit stream: the removed positions (increasing, inside the reference) into
+  // the scratch, then the additions. (Reading both at once, as a merge does, decodes the
+  // removals twice: once to find where the additions start.)
+  GapStream removals = diff_removals(diff);
+  std::size_t removed = 0;
+  for (std::uint64_t q;;) {
+    if (!removals.next(q)) return false;
+    if (q == kEnd) break;
+    if (q >= reference_count || removed == scratch_size) return false;
+    scratch[removed++] = static_cast<std::uint32_t>(q);
+  }
   // An addition equal to a kept entry would repeat it: it must sit on a removed position.
-  // Additions and their positions both increase, so one pass over each list does.
+  // Additions, their positions and the removals all increase: one forward scan of each.
+  GapStream additions = diff_additions(diff, removals);
   const std::uint32_t* const end = reference + reference_count;
   const std::uint32_t* at = reference;
-  while (addition != kEnd) {
-    if (addition >= object_count) return false;
-    at = std::lower_bound(at, end, static_cast<std::uint32_t>(addition));
-    if (at != end && *at == addition) {
-      const std::uint64_t position = static_cast<std::uint64_t>(at - reference);
-      while (removal < position) {
-        if (!removals.next(removal)) return false;
-      }
-      if (removal != position) return false;
+  std::size_t r = 0;
+  for (std::uint64_t a;;) {
+    if (!additions.next(a)) return false;
+    if (a == kEnd) return true;
+    if (a >= object_count) return false;
+    // Galloping from the last match: a few additions spread over a long reference.
+    std::size_t step = 1;
+    while (step < static_cast<std::size_t>(end - at) && at[step] < a) {
+      at += step;
+      step *= 2;
     }
-    if (!additions.next(addition)) return false;
+    at = std::lower_bound(at, step < static_cast<std::size_t>(end - at) ? at + step + 1 : end,
+                          static_cast<std::uint32_t>(a));
+    if (at != end && *at == a) {
+      const auto position = static_cast<std::uint32_t>(at - reference);
+      while (r < removed && scratch[r] < position) ++r;
+      if (r == removed || scratch[r] != position) return false;
+    }
   }
-  while (removal != kEnd) {  // the positions not met above, each inside the reference
-    if (removal >= reference_count || !removals.next(removal)) return false;
-  }
-  return std::uint64_t{count} + diff.removed == reference_count + std::uint64_t{diff.added};
 }
 
 bool cell_contains(const PvsSection& section, std::uint32_t cell, std::uint32_t object) noexcept {

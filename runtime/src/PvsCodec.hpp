@@ -119,10 +119,13 @@ bool merge_decoded(const DiffHeader& diff, const std::uint32_t* reference, std::
 
 /// Whether a diff of declared size `count` against the decoded, strictly increasing list
 /// reference[0, reference_count) (entries < object_count) gives a strictly increasing list of
-/// `count` entries below object_count, without building it: O((removed + added) log n). Exactly
-/// when merge_decoded succeeds with `count` entries, strictly increasing and in range.
+/// `count` entries below object_count, without building it: one pass over the diff's codes and
+/// one over the reference. `scratch` holds the removed positions (false when they need more than
+/// `scratch_size` slots; reference_count slots always do). Exactly when merge_decoded succeeds
+/// with `count` entries, strictly increasing and in range.
 bool check_diff(const DiffHeader& diff, std::uint32_t count, const std::uint32_t* reference,
-                std::size_t reference_count, std::uint32_t object_count) noexcept;
+                std::size_t reference_count, std::uint32_t object_count, std::uint32_t* scratch,
+                std::size_t scratch_size) noexcept;
 
 /// Whether `object` is in the PVS of `cell`, by scanning the encoded lists (no buffer).
 bool cell_contains(const PvsSection& section, std::uint32_t cell, std::uint32_t object) noexcept;

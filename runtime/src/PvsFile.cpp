@@ -38,6 +38,16 @@ std::uint32_t locate_in(const detail::PvsFileData& f, double x, double y, double
   return kNoCell;
 }
 
+/// A new PvsFileData for `out`; null (with out closed and `error` set) when memory is short.
+std::unique_ptr<detail::PvsFileData> new_file_data(PvsFile& out, LoadError* error) noexcept {
+  std::unique_ptr<detail::PvsFileData> file(new (std::nothrow) detail::PvsFileData);
+  if (!file) {
+    out = PvsFile();
+    if (error != nullptr) *error = {Status::kOutOfMemory, 0, "out of memory while loading"};
+  }
+  return file;
+}
+
 }  // namespace
 
 PvsFile::PvsFile() noexcept = default;
@@ -61,12 +71,8 @@ Status PvsFile::open(const void* data, std::size_t size, PvsFile& out, const Loa
     if (error != nullptr) *error = {Status::kInvalidArgument, 0, "null buffer"};
     return Status::kInvalidArgument;
   }
-  std::unique_ptr<detail::PvsFileData> file(new (std::nothrow) detail::PvsFileData);
-  if (!file) {
-    out.data_.reset();
-    if (error != nullptr) *error = {Status::kOutOfMemory, 0, "out of memory while loading"};
-    return Status::kOutOfMemory;
-  }
+  std::unique_ptr<detail::PvsFileData> file = new_file_data(out, error);
+  if (!file) return Status::kOutOfMemory;
   file->data = static_cast<const unsigned char*>(data);
   file->size = size;
   return open_data(std::move(file), out, options, error);
@@ -75,12 +81,8 @@ Status PvsFile::open(const void* data, std::size_t size, PvsFile& out, const Loa
 Status PvsFile::open_owned(std::vector<std::byte>&& bytes, PvsFile& out, const LoadOptions& options,
                            LoadError* error) noexcept {
   std::vector<std::byte> owned = std::move(bytes);
-  std::unique_ptr<detail::PvsFileData> file(new (std::nothrow) detail::PvsFileData);
-  if (!file) {
-    out.data_.reset();
-    if (error != nullptr) *error = {Status::kOutOfMemory, 0, "out of memory while loading"};
-    return Status::kOutOfMemory;
-  }
+  std::unique_ptr<detail::PvsFileData> file = new_file_data(out, error);
+  if (!file) return Status::kOutOfMemory;
   file->owned = std::move(owned);  // a vector move keeps the data pointer
   file->data = reinterpret_cast<const unsigned char*>(file->owned.data());
   file->size = file->owned.size();
@@ -89,14 +91,17 @@ Status PvsFile::open_owned(std::vector<std::byte>&& bytes, PvsFile& out, const L
 
 Status PvsFile::open_file(const char* path, PvsFile& out, const LoadOptions& options,
                           LoadError* error) noexcept {
-  std::vector<std::byte> bytes;
-  const Status status = read_file(path, bytes);
+  std::unique_ptr<detail::PvsFileData> file = new_file_data(out, error);
+  if (!file) return Status::kOutOfMemory;
+  const Status status = detail::read_file_large(path, file->read);
   if (status != Status::kOk) {
     out.data_.reset();
     if (error != nullptr) *error = {status, 0, "cannot read the file"};
     return status;
   }
-  return open_owned(std::move(bytes), out, options, error);
+  file->data = reinterpret_cast<const unsigned char*>(file->read.data());
+  file->size = file->read.size();
+  return open_data(std::move(file), out, options, error);
 }
 
 bool PvsFile::is_open() const noexcept {

@@ -7,13 +7,15 @@
 #include <vector>
 
 #include "Container.hpp"
+#include "HugePages.hpp"
 #include "Sections.hpp"
 #include "urbanpvs/runtime/GeodeticFrame.hpp"
 
 namespace urbanpvs::runtime::detail {
 
 struct PvsFileData {
-  std::vector<std::byte> owned;  ///< empty for PvsFile::open: the caller owns the bytes
+  std::vector<std::byte> owned;  ///< open_owned: the caller's bytes, moved in
+  LargeVector<std::byte> read;   ///< open_file: the file as read, on huge pages (HugePages.hpp)
   const unsigned char* data = nullptr;
   std::size_t size = 0;
   ContainerInfo container;

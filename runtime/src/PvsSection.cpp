@@ -5,6 +5,7 @@
 #include <deque>
 #include <memory>
 
+#include "Bits.hpp"
 #include "ByteReader.hpp"
 #include "ByteWriter.hpp"
 #include "Sections.hpp"
@@ -132,6 +133,9 @@ struct PvsValidation {
   const PvsSection& section;
   std::uint32_t object_count;
   std::vector<std::uint32_t> reference;  ///< per cell: its diff reference, or kNoCell
+  /// Per cell: its diff fields as pass 1 read them (meaningful where reference is a cell), so
+  /// pass 2 and the expansion do not parse them again.
+  LargeVector<DiffHeader> diffs;
   std::vector<std::uint32_t>
       count;  ///< per cell: its PVS size, stored or derived (true after check_all)
   std::vector<std::uint32_t> first_child;  ///< cell_count + 1 offsets into `children`
@@ -158,7 +162,7 @@ struct PvsValidation {
 
   /// The counts of coded diffs, each its reference's - removed + added, top-down from the full
   /// cells. A cell not reached is on a cycle of references.
-  bool derive_counts(const std::vector<std::array<std::uint32_t, 2>>& edits, const char*& detail) {
+  bool derive_counts(const char*& detail) {
     std::vector<std::uint32_t> stack;
     std::size_t reached = 0;
     for (std::uint32_t root = 0; root < reference.size(); ++root) {
@@ -170,7 +174,7 @@ struct PvsValidation {
         ++reached;
         for (std::uint32_t k = first_child[cell]; k < first_child[cell + 1]; ++k) {
           const std::uint32_t child = children[k];
-          const auto [removed, added] = edits[child];
+          const std::uint32_t removed = diffs[child].removed, added = diffs[child].added;
           const std::uint64_t n = std::uint64_t{count[cell]} - removed + added;
           if (removed > count[cell] || n > object_count) {
             detail = "pvs: diff removes more than its reference holds or exceeds the objects";
@@ -195,11 +199,6 @@ struct PvsValidation {
     return n == 0 || list[n - 1] < object_count;
   }
 
-  bool diff_of(std::uint32_t cell, PayloadHeader& header, DiffHeader& diff) const {
-    return read_payload_header(section, cell, header) &&
-           read_diff_header(section, cell, header, diff);
-  }
-
   /// Checks the diffs against `cell` (its decoded list at `list`, at depth `level`): a leaf
   /// without building its list, a cell others refer to by building it one level down.
   bool check_children(std::uint32_t cell, const std::uint32_t* list, std::size_t n,
@@ -208,24 +207,31 @@ struct PvsValidation {
       detail = "pvs: bad diff reference chain";
       return false;
     }
-    for (std::uint32_t k = first_child[cell]; k < first_child[cell + 1]; ++k) {
+    const std::uint32_t last = first_child[cell + 1];
+    for (std::uint32_t k = first_child[cell]; k < last; ++k) {
+      // Siblings are scattered over the file: fetch the fields of the one after next and the
+      // codes of the next while this one is checked (the loop is bound by those misses).
+      if (k + 2 < last) {
+        const std::uint32_t later = children[k + 2];
+        URBANPVS_PREFETCH(&diffs[later]);
+        URBANPVS_PREFETCH(&count[later]);
+        URBANPVS_PREFETCH(&first_child[later]);
+      }
+      if (k + 1 < last) URBANPVS_PREFETCH(diffs[children[k + 1]].lists);
       const std::uint32_t child = children[k];
       ++visited;
       deepest = std::max(deepest, level + 1);
-      PayloadHeader header;
-      DiffHeader diff;
-      if (!diff_of(child, header, diff)) {
-        detail = "pvs: cell payload does not decode";
-        return false;
-      }
+      const DiffHeader& diff = diffs[child];
+      // A leaf is checked without building its list; the level below (unused: the leaf has
+      // no children) holds its removed positions.
+      std::uint32_t* next = levels.get() + (level + 1) * half;
       if (!has_children(child)) {
-        if (!check_diff(diff, count[child], list, n, object_count)) {
+        if (!check_diff(diff, count[child], list, n, object_count, next, half)) {
           detail = "pvs: diff does not give an ascending list of its size in range";
           return false;
         }
         continue;
       }
-      std::uint32_t* next = levels.get() + (level + 1) * half;
       std::size_t m = 0;
       if (!merge_decoded(diff, list, n, next, half, m) || m != count[child]) {
         detail = "pvs: cell payload does not decode";
@@ -286,11 +292,8 @@ struct PvsValidation {
   bool expand_children(PvsExpansion& e, std::uint32_t cell) {
     for (std::uint32_t k = first_child[cell]; k < first_child[cell + 1]; ++k) {
       const std::uint32_t child = children[k];
-      PayloadHeader header;
-      DiffHeader diff;
       std::size_t got = 0;
-      if (!diff_of(child, header, diff) ||
-          !merge_decoded(diff, e.ids.data() + e.offsets[cell], size(e, cell),
+      if (!merge_decoded(diffs[child], e.ids.data() + e.offsets[cell], size(e, cell),
                          e.ids.data() + e.offsets[child], size(e, child), got) ||
           got != size(e, child) || !expand_children(e, child)) {
         return false;
@@ -411,8 +414,7 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
   PvsValidation v(s, object_count);
   v.reference.resize(count);
   v.count.resize(count);
-  std::vector<std::array<std::uint32_t, 2>> edits;  // coded diffs: removed, added
-  if (s.coded) edits.resize(count);
+  v.diffs.resize(count);
   for (std::uint32_t cell = 0; cell < count; ++cell) {
     PayloadHeader header;
     DiffHeader diff;
@@ -424,11 +426,11 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
     const bool is_diff = header.kind == format::PvsKind::kDiff;
     v.reference[cell] = is_diff ? diff.reference : kNoCell;
     v.count[cell] = header.count;
-    if (s.coded && is_diff) edits[cell] = {diff.removed, diff.added};
+    if (is_diff) v.diffs[cell] = diff;
   }
   v.index_children();
   // A coded diff's count is derived from its reference's: from the full cells down.
-  if (s.coded && !v.derive_counts(edits, detail)) return false;
+  if (s.coded && !v.derive_counts(detail)) return false;
   for (std::uint32_t c : v.count) {
     out.max_pvs_size = std::max(out.max_pvs_size, c);
     out.total_entries += c;

@@ -101,7 +101,7 @@ std::vector<detail::Neighbours> reader_neighbours(const PvsBake& bake,
   if (!detail::read_cells_v2({cells.data(), cells.size(), false}, table, problem)) {
     throw PvsWriteError(std::string("cells: cannot read back what was written: ") + problem);
   }
-  return std::move(table.neighbours);
+  return {table.neighbours.begin(), table.neighbours.end()};
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "HugePages.hpp"
 #include "PointLocationGrid.hpp"
 #include "PvsCodec.hpp"
 #include "urbanpvs/runtime/PvsFile.hpp"
@@ -60,8 +61,8 @@ struct CellShape {
   double z_max;
 };
 struct CellTable {
-  std::vector<CellShape> shapes;
-  std::vector<std::array<std::uint32_t, 3>> neighbours;
+  LargeVector<CellShape> shapes;
+  LargeVector<std::array<std::uint32_t, 3>> neighbours;
   std::uint32_t count = 0;
   /// Grid cells per view cell of the point-location grid (stored in 2.x, built at load).
   double grid_density = 1;
@@ -82,8 +83,8 @@ CellGeometry cell_at(const CellTable& table, std::uint32_t index) noexcept;
 /// load from a 2.x file's cells with the same function the 1.x writer used.
 struct GridIndex {
   GridGeometry geometry;
-  std::vector<std::uint32_t> offsets;  ///< nx * ny + 1
-  std::vector<std::uint32_t> entries;
+  LargeVector<std::uint32_t> offsets;  ///< nx * ny + 1
+  LargeVector<std::uint32_t> entries;
 };
 std::vector<unsigned char> write_grid(const BuiltGrid& grid);
 /// Also checks the grid is exactly the one build_grid's indexing gives for `cells`.
@@ -125,8 +126,8 @@ std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
 /// Every cell's PVS decoded into one array (LoadOptions::expand_pvs): cell c is
 /// `ids[offsets[c], offsets[c + 1])`.
 struct PvsExpansion {
-  std::vector<std::uint32_t> ids;
-  std::vector<std::uint64_t> offsets;
+  LargeVector<std::uint32_t> ids;
+  LargeVector<std::uint64_t> offsets;
   bool empty() const noexcept { return offsets.empty(); }
 };
 /// Decodes every cell once: sorted, in range, counts consistent, chains within bounds. When

@@ -4,8 +4,10 @@
 // behind the edge, height of the sight plane), then max over edges and min over samples.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
+#include "urbanpvs/geometry/city/ObjectOutline.hpp"
 #include "urbanpvs/preprocess/visibility/CellCullMap.hpp"
 #include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 
@@ -156,6 +158,58 @@ geometry::CityObject box_object(std::uint32_t index, double x0, double y0, doubl
   return o;
 }
 
+/// The outline of every object, as the bake tests them.
+std::vector<geometry::Ring> outlines(const std::vector<geometry::CityObject>& objects) {
+  std::vector<geometry::Ring> out;
+  for (const geometry::CityObject& o : objects) out.push_back(geometry::object_outline(o));
+  return out;
+}
+
+/// A building of `w` × `d` m and height `top`, centred at (cx, cy), turned by `angle`: its
+/// roof and its footprint as the readers give them, its box around both.
+geometry::CityObject turned_object(std::uint32_t index, double cx, double cy, double w, double d,
+                                   double angle, double top) {
+  geometry::CityObject o;
+  o.index = index;
+  geometry::Ring ring;
+  for (const auto& [u, v] : {std::pair{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}) {
+    const double x = u * w, y = v * d;
+    ring.push_back({cx + x * std::cos(angle) - y * std::sin(angle),
+                    cy + x * std::sin(angle) + y * std::cos(angle)});
+  }
+  geometry::Surface3 roof;
+  roof.rings.emplace_back();
+  for (const Vec2& p : ring) {
+    roof.rings.back().push_back({p.x, p.y, top});
+    o.bbox.extend(p, 0);
+    o.bbox.extend(p, top);
+  }
+  o.surfaces.push_back(roof);
+  o.footprint.push_back({ring, {}});
+  return o;
+}
+
+/// Whether the closed square of pixel (i, j) of `g` grown by `margin` meets the convex `ring`:
+/// no separating axis among the two coordinate axes and the ring's edge normals.
+bool pixel_meets(const CullMapGrid& g, int i, int j, const geometry::Ring& ring, double margin) {
+  const Vec2 lo{g.origin.x + i * g.pixel - margin, g.origin.y + j * g.pixel - margin};
+  const Vec2 hi{lo.x + g.pixel + 2 * margin, lo.y + g.pixel + 2 * margin};
+  const std::array<Vec2, 4> square{lo, Vec2{hi.x, lo.y}, hi, Vec2{lo.x, hi.y}};
+  std::vector<Vec2> axes{{1, 0}, {0, 1}};
+  for (std::size_t e = 0; e < ring.size(); ++e) {
+    const Vec2 d = ring[(e + 1) % ring.size()] - ring[e];
+    axes.push_back({-d.y, d.x});
+  }
+  for (const Vec2& a : axes) {
+    double p0 = 1e300, p1 = -1e300, q0 = 1e300, q1 = -1e300;
+    for (const Vec2& p : ring) p0 = std::min(p0, glm::dot(a, p)), p1 = std::max(p1, glm::dot(a, p));
+    for (const Vec2& q : square)
+      q0 = std::min(q0, glm::dot(a, q)), q1 = std::max(q1, glm::dot(a, q));
+    if (p1 < q0 || q1 < p0) return false;
+  }
+  return true;
+}
+
 Occluder wall(double x0, double y0, double x1, double y1, double top) {
   Occluder o;
   o.top_z = top;
@@ -178,7 +232,7 @@ TEST(CullMap, HandBuiltScene) {
       box_object(2, 140, 40, 160, 60, 12),  // beyond the wall's end
   };
   const CullMap map = cell_cull_map(grid, samples, occ);
-  EXPECT_EQ(visible_objects(map, objects), (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(visible_objects(map, objects, outlines(objects)), (std::vector<std::uint32_t>{1, 2}));
 
   // Fusion: two staggered walls whose union blocks the view to a building far behind, though
   // neither does alone.
@@ -187,9 +241,9 @@ TEST(CullMap, HandBuiltScene) {
   std::vector<Occluder> both = left;
   both.push_back(right[0]);
   const std::vector<geometry::CityObject> far{box_object(0, 45, 120, 55, 130, 10)};
-  EXPECT_EQ(visible_objects(cell_cull_map(grid, samples, left), far).size(), 1u);
-  EXPECT_EQ(visible_objects(cell_cull_map(grid, samples, right), far).size(), 1u);
-  EXPECT_TRUE(visible_objects(cell_cull_map(grid, samples, both), far).empty());
+  EXPECT_EQ(visible_objects(cell_cull_map(grid, samples, left), far, outlines(far)).size(), 1u);
+  EXPECT_EQ(visible_objects(cell_cull_map(grid, samples, right), far, outlines(far)).size(), 1u);
+  EXPECT_TRUE(visible_objects(cell_cull_map(grid, samples, both), far, outlines(far)).empty());
 }
 
 TEST(CullMap, ObjectsReachingOutsideTheMapAreVisible) {
@@ -202,6 +256,87 @@ TEST(CullMap, ObjectsReachingOutsideTheMapAreVisible) {
   EXPECT_FALSE(hidden_by(map, crossing));
   map.at(3, 3) = 4.0f;  // the box's corner (3, 3) touches pixel (3, 3): any touch counts
   EXPECT_FALSE(hidden_by(map, inside_box));
+}
+
+// The outline covers the object: every point of its geometry; without points, a box beyond
+// them, or when it occludes nothing, the outline is the box.
+TEST(ObjectOutline, ContainsTheObjectAndFallsBackToTheBox) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(0, 3.14159), size(3, 40);
+  for (int trial = 0; trial < 200; ++trial) {
+    const geometry::CityObject o = turned_object(0, 100, 200, size(rng), size(rng), angle(rng), 9);
+    const geometry::Ring hull = geometry::object_outline(o);
+    ASSERT_GE(hull.size(), 3u);
+    for (std::size_t e = 0; e < hull.size(); ++e) {
+      const Vec2 a = hull[e], b = hull[(e + 1) % hull.size()];
+      for (const Vec3& p : o.surfaces[0].rings[0]) {  // left of every edge: inside, CCW
+        EXPECT_GE((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x), -1e-9);
+      }
+    }
+  }
+  geometry::CityObject o = turned_object(0, 0, 0, 20, 10, 0.5, 9);
+  o.occludes = false;
+  EXPECT_EQ(geometry::object_outline(o).size(), 4u);
+  EXPECT_EQ(geometry::object_outline(o)[0], o.bbox.xy.min);
+  o.occludes = true;
+  o.bbox.extend(Vec2{30, 0}, 0);  // geometry the surfaces do not hold
+  EXPECT_EQ(geometry::object_outline(o)[0], o.bbox.xy.min);
+  EXPECT_EQ(geometry::object_outline(box_object(0, 1, 2, 3, 4, 5))[2], (Vec2{3, 4}));
+}
+
+// The pixels the outline test reads are exactly those whose square meets the outline (up to a
+// micrometre at a border): every one it must read (a point of the object may lie there), and
+// none the object cannot reach. Found one pixel at a time: the map is high everywhere but at
+// that pixel.
+TEST(CullMap, OutlineTestReadsExactlyThePixelsTheOutlineTouches) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> angle(0, 3.14159), size(0.5, 12), at(20, 30);
+  const CullMapGrid grid = CullMapGrid::covering({{0, 0}, {50, 50}}, 1.0);
+  CullMap map(grid);
+  int fewer = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const geometry::CityObject o =
+        turned_object(0, at(rng), at(rng), size(rng), size(rng), angle(rng), 10);
+    const geometry::Ring hull = geometry::object_outline(o);
+    const auto [i0, j0, i1, j1] = grid.touched(o.bbox.xy);
+    long long read = 0;
+    for (long long j = j0; j <= j1; ++j) {
+      for (long long i = i0; i <= i1; ++i) {
+        map.fill(100.0f);
+        map.at(static_cast<int>(i), static_cast<int>(j)) = 5.0f;
+        const bool tested = !hidden_by(map, o.bbox, hull);
+        read += tested;
+        const int pi = static_cast<int>(i), pj = static_cast<int>(j);
+        if (pixel_meets(grid, pi, pj, hull, -1e-6)) {
+          EXPECT_TRUE(tested) << "trial " << trial << " pixel " << i << "," << j;
+        }
+        if (!pixel_meets(grid, pi, pj, hull, 1e-6)) {
+          EXPECT_FALSE(tested) << "trial " << trial << " pixel " << i << "," << j;
+        }
+      }
+    }
+    fewer += read < (i1 - i0 + 1) * (j1 - j0 + 1);
+  }
+  EXPECT_GT(fewer, 100);  // turned buildings cover fewer pixels than their boxes
+}
+
+// A turned building behind a turned wall: the wall's shadow covers the building but not the
+// corners of its box, which reach into the open street.
+TEST(CullMap, ATurnedBuildingIsHiddenByItsOutlineNotByItsBox) {
+  const std::vector<Vec3> samples = cell_samples({0, -30}, {10, -30}, {5, -20}, 2.0, 1.0);
+  const CullMapGrid grid = CullMapGrid::covering({{-100, -100}, {100, 100}}, 1.0);
+  Occluder w;
+  w.top_z = 30;
+  geometry::Ring slab;  // 40 m x 4 m, turned by 45 degrees
+  for (const auto& [u, v] : {std::pair{-20.0, -2.0}, {20.0, -2.0}, {20.0, 2.0}, {-20.0, 2.0}}) {
+    slab.push_back({5 + (u - v) * std::sqrt(0.5), (u + v) * std::sqrt(0.5)});
+  }
+  w.shape = Polygon{slab, {}};
+  w.bounds = geometry::bounds(w.shape);
+  const CullMap map = cell_cull_map(grid, samples, std::vector<Occluder>{w});
+  const geometry::CityObject o = turned_object(0, 12, 12, 24, 3, 0.7854, 8);
+  EXPECT_TRUE(hidden_by(map, o.bbox, geometry::object_outline(o)));
+  EXPECT_FALSE(hidden_by(map, o.bbox));
 }
 
 TEST(CullMapSettings, RefusesPixelsTooLargeForEpsilon) {

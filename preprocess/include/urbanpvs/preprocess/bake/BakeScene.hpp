@@ -62,6 +62,8 @@ class BakeScene {
   double zlo() const { return zlo_; }  ///< below every object
   double zhi() const { return zhi_; }  ///< above every occluder
   const BoxQuadtree& object_index() const { return object_index_; }
+  /// Object i's ground outline, the pixels a cull map tests it over (geometry::object_outline).
+  const std::vector<geometry::Ring>& object_outlines() const { return object_outlines_; }
   const BoxQuadtree& occluder_index() const { return occluder_index_; }
 
   /// The samples of a cell: those of its three top edges (thesis 5.3).
@@ -85,6 +87,7 @@ class BakeScene {
   CullMapGrid area_;
   double zlo_ = 0, zhi_ = 0;
   BoxQuadtree object_index_, occluder_index_;
+  std::vector<geometry::Ring> object_outlines_;
 };
 
 }  // namespace urbanpvs::preprocess

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/geometry/city/ObjectOutline.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
+
+#include <iterator>
+#include <vector>
+
+namespace urbanpvs::geometry {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+Ring box_rectangle(const Box2& b) {
+  if (b.empty()) return {};
+  return {b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}};
+}
+
+}  // namespace
+
+Ring object_outline(const CityObject& o) {
+  if (!o.occludes) return box_rectangle(o.bbox.xy);
+  std::vector<Kernel::Point_2> points;
+  const auto add = [&](const Vec2& p) { points.emplace_back(p.x, p.y); };
+  for (const Surface3& s : o.surfaces)
+    for (const auto& ring : s.rings)
+      for (const Vec3& v : ring) add({v.x, v.y});
+  for (const Polygon& p : o.footprint)
+    for (const Vec2& v : p.outer) add(v);
+  for (const OccluderPrism& p : o.occluders)
+    for (const Vec2& v : p.footprint.outer) add(v);
+  // The hull's vertices are input points (exact predicates, no constructed coordinates), so
+  // it contains every point exactly.
+  std::vector<Kernel::Point_2> hull;
+  CGAL::convex_hull_2(points.begin(), points.end(), std::back_inserter(hull));
+  if (hull.size() < 3) return box_rectangle(o.bbox.xy);  // no area: a line, a point or nothing
+  Ring out;
+  out.reserve(hull.size());
+  Box2 extent;
+  for (const Kernel::Point_2& p : hull) {
+    out.push_back({p.x(), p.y()});
+    extent.extend(out.back());
+  }
+  // The box may hold geometry the surfaces do not (a ring the reader could not use): then the
+  // hull does not account for all of the object, and the box decides.
+  constexpr double kSlack = 1e-6;  // m: rounding between the box and the points it came from
+  const Box2& b = o.bbox.xy;
+  if (b.min.x < extent.min.x - kSlack || b.min.y < extent.min.y - kSlack ||
+      b.max.x > extent.max.x + kSlack || b.max.y > extent.max.y + kSlack) {
+    return box_rectangle(b);
+  }
+  return out;
+}
+
+}  // namespace urbanpvs::geometry

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The ground outline of a city object: the convex hull of its geometry seen from above. A cull
+// map decides an object by the pixels it covers (thesis 4.3.3); its axis-aligned box covers
+// twice the area of a rotated building (Delft: hull / box = 0.45 on average, the 3D BAG tile
+// 0.67, a generated city 0.81), and the pixels beside the building, in the street, are the
+// ones a shadow covers least.
+#pragma once
+
+#include "urbanpvs/geometry/city/CityModel.hpp"
+
+namespace urbanpvs::geometry {
+
+/// Counter-clockwise convex hull (CGAL) of the xy of every point of `o`'s surfaces, footprints
+/// and occluders: it contains every point of the object. An object that does not occlude is
+/// tested over its whole box (it may be anywhere in it), and so is one without points or whose
+/// box reaches beyond its points (geometry the reader kept out of its surfaces): then the
+/// outline is its box's rectangle. Empty only when the box is empty.
+Ring object_outline(const CityObject& o);
+
+}  // namespace urbanpvs::geometry
