@@ -4,11 +4,11 @@
 // Storage for the tables a random query walks (cell shapes, the point-location grid, expanded
 // PVS lists): megabytes touched at random, one cache line per table per query. With 4 KiB pages
 // each of those lines is also a TLB miss and a page walk, about as costly as the line itself;
-// on 2 MiB pages the walks stay in cache. On the 8 km² bake a random locate went from 370 to
-// 190 ns p50 and locate + expanded PVS from 982 to 661 ns (runtime/README.md, "Random
-// queries"). Linux gives huge pages to an aligned region advised with MADV_HUGEPAGE (the
-// default "madvise" mode of transparent huge pages); elsewhere, and below one huge page, this
-// is the ordinary heap.
+// on 2 MiB pages the walks stay in cache. On the 8 km² bake a random locate went from 361-441
+// to 220-241 ns p50 and locate + expanded PVS from about 1,000 to 791 ns (runtime/README.md,
+// "Huge pages and a cheaper load check"). Linux gives huge pages to an aligned region advised
+// with MADV_HUGEPAGE (the default "madvise" mode of transparent huge pages); elsewhere, and
+// below one huge page, this is the ordinary heap.
 
 #include <cstddef>
 #include <new>
