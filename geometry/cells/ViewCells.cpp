@@ -29,7 +29,7 @@ bool lexicographically_less(Vec2 a, Vec2 b) {
 }
 
 Polygon rectangle(const Box2& b) {
-  return {{b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}}, {}};
+  return {b.corners(), {}};
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

@@ -68,8 +68,7 @@ CityObject non_occluding(CityObject o, const std::string& why, ReadReport& repor
   // A footprint that survived (only the height is unknown) still says where the building is;
   // else its box does.
   const Box2& b = o.bbox.xy;
-  if (o.footprint.empty() && !b.empty() && b.area() > 0)
-    o.footprint = {Polygon{{b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}}, {}}};
+  if (o.footprint.empty() && !b.empty() && b.area() > 0) o.footprint = {Polygon{b.corners(), {}}};
   report.non_occluding.push_back(why + " (kept as an object that occludes nothing)");
   return o;
 }
@@ -245,8 +244,7 @@ void place_on_terrain(City& city, const std::vector<bool>& relative) {
     std::vector<Polygon> where = o.footprint;
     for (const OccluderPrism& p : o.occluders) where.push_back(p.footprint);
     const Box2& b = o.bbox.xy;
-    if (where.empty() && !b.empty())
-      where.push_back({{b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}}, {}});
+    if (where.empty() && !b.empty()) where.push_back({b.corners(), {}});
     const TerrainUnder::Range r = terrain.under(where);
     if (r.empty()) {
       if (off++ == 0) off_id = o.source_id;

@@ -13,8 +13,7 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 Ring box_rectangle(const Box2& b) {
-  if (b.empty()) return {};
-  return {b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}};
+  return b.empty() ? Ring{} : b.corners();
 }
 
 }  // namespace

@@ -41,14 +41,7 @@ std::pair<double, double> extent_in_strip(const geometry::Ring& outline, double 
 }  // namespace
 
 bool hidden_by(const CullMap& map, const geometry::Box3& box) {
-  const CullMapGrid& g = map.grid();
-  if (box.xy.empty()) return false;
-  const auto [i0, j0, i1, j1] = g.touched(box.xy);
-  if (i0 < 0 || j0 < 0 || i1 >= g.width || j1 >= g.height) return false;
-  for (int j = static_cast<int>(j0); j <= static_cast<int>(j1); ++j)
-    for (int i = static_cast<int>(i0); i <= static_cast<int>(i1); ++i)
-      if (!(box.zmax < static_cast<double>(map.at(i, j)))) return false;
-  return true;
+  return hidden_by(map, box, geometry::Ring{});  // no outline: the box's whole rectangle
 }
 
 PixelSpan outline_row(const CullMapGrid& g, const geometry::Ring& outline,

@@ -104,14 +104,6 @@ class BitReader {
     return true;
   }
 
-  /// Skips `n` codes of order k.
-  bool skip(unsigned k, std::uint32_t n) noexcept {
-    std::uint64_t ignored;
-    for (std::uint32_t i = 0; i < n; ++i)
-      if (!code(k, ignored)) return false;
-    return true;
-  }
-
   /// Whether the stream ends here: the rest of the current byte is zero padding and no byte
   /// follows (the encoding is exact, like a varint's).
   bool at_padded_end() const noexcept {

@@ -138,7 +138,7 @@ bool build_grid_index(const CellTable& cells, GridIndex& out, const char*& detai
   for (std::size_t c = 0; c < grid.offsets.size(); ++c) {
     out.offsets[c] = static_cast<std::uint32_t>(grid.offsets[c]);  // <= entries.size()
   }
-  out.entries.assign(grid.entries.begin(), grid.entries.end());
+  out.entries = std::move(grid.entries);
   return true;
 }
 

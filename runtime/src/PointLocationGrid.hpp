@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "HugePages.hpp"
 #include "urbanpvs/runtime/Types.hpp"
 
 namespace urbanpvs::runtime::detail {
@@ -45,7 +46,8 @@ GridRange triangle_grid_range(const GridGeometry& grid,
 struct BuiltGrid {
   GridGeometry geometry;
   std::vector<std::uint64_t> offsets;  ///< nx * ny + 1 prefix sums into entries
-  std::vector<std::uint32_t> entries;  ///< cell indices, ascending within each grid cell
+  /// Cell indices, ascending within each grid cell; the reader keeps them (huge pages).
+  LargeVector<std::uint32_t> entries;
 };
 
 /// Builds the grid for `triangles` with about `grid_cells_per_cell` grid cells per triangle.

@@ -86,21 +86,13 @@ GapStream diff_additions(const DiffHeader& d, const GapStream& removals) noexcep
 /// The removals and the additions of a diff, each as a stream, for reading both at once (the
 /// removals are skipped to find the additions); false when the removals run past the payload.
 bool open_diff_lists(const DiffHeader& d, GapStream& removals, GapStream& additions) noexcept {
-  if (d.coded) {
-    BitReader bits(d.lists, static_cast<std::size_t>(d.end - d.lists),
-                   static_cast<std::size_t>(d.blob_end - d.lists));
-    removals = GapStream(bits, d.removed_order, d.removed, false);
-    if (!bits.skip(d.removed_order, d.removed)) return false;
-    additions = GapStream(bits, d.added_order, d.added, true);
-    return true;
+  removals = diff_removals(d);
+  GapStream skipped = removals;
+  for (std::uint64_t q;;) {
+    if (!skipped.next(q)) return false;
+    if (q == kEnd) break;
   }
-  const unsigned char* additions_begin = d.lists;
-  for (std::uint32_t i = 0; i < d.removed; ++i) {
-    std::uint32_t ignored;
-    if (!read_varint(additions_begin, d.end, ignored)) return false;
-  }
-  removals = GapStream(d.lists, additions_begin, d.removed, true);
-  additions = GapStream(additions_begin, d.end, d.added, true);
+  additions = diff_additions(d, skipped);
   return true;
 }
 

@@ -43,6 +43,8 @@ struct Box2 {
     return min.x <= b.max.x && b.min.x <= max.x && min.y <= b.max.y && b.min.y <= max.y;
   }
   Box2 grown(double d) const { return {{min.x - d, min.y - d}, {max.x + d, max.y + d}}; }
+  /// The four corners, counter-clockwise from min (a non-empty box).
+  Ring corners() const { return {min, {max.x, min.y}, max, {min.x, max.y}}; }
   double area() const { return empty() ? 0.0 : (max.x - min.x) * (max.y - min.y); }
 };
 
