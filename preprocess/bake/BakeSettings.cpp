@@ -2,6 +2,7 @@
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "urbanpvs/geometry/cells/ViewCellSettings.hpp"
 #include "urbanpvs/geometry/city/ReadSettings.hpp"
@@ -112,6 +113,20 @@ std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptio
     if (s.changes_result() && s.stage != SettingStage::Read && s.kind != SettingKind::Path)
       out.emplace_back(s.property_key(), s.get(r));
   return out;
+}
+
+BakeOptions bake_options_from_properties(
+    const std::vector<std::pair<std::string, std::string>>& properties) {
+  PreprocessRequest r;
+  for (const auto& [key, unused] : bake_properties(r.bake)) {
+    const auto stored = std::find_if(properties.begin(), properties.end(),
+                                     [&](const auto& p) { return p.first == key; });
+    if (stored == properties.end()) throw std::invalid_argument("the file has no property " + key);
+    const auto setting = std::find_if(bake_settings().begin(), bake_settings().end(),
+                                      [&](const Setting& s) { return s.property_key() == key; });
+    setting->set(r, stored->second);
+  }
+  return r.bake;
 }
 
 std::vector<std::pair<std::string, std::string>> request_properties(const PreprocessRequest& r) {

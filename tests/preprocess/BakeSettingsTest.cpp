@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -233,5 +235,70 @@ TEST(BakeSettings, EveryToolReadsCitiesWithTheSameOptions) {
       EXPECT_NE(help.find("--" + s.key + " "), std::string::npos) << s.key;
       EXPECT_NE(help.find(s.help.substr(0, 30)), std::string::npos) << s.key << ": help text";
     }
+  }
+}
+
+// urbanpvs-explain bakes cells again with the options a file stores: every stored setting, set
+// to a value other than its default, reads back from the file's properties.
+TEST(BakeSettings, TheFilesPropertiesGiveBackTheBakeOptions) {
+  PreprocessRequest r;
+  const auto defaults = bake_properties(r.bake);
+  for (const auto& [key, unused] : defaults) {
+    const auto s = std::find_if(bake_settings().begin(), bake_settings().end(),
+                                [&](const Setting& t) { return t.property_key() == key; });
+    ASSERT_NE(s, bake_settings().end()) << key;
+    const double v = s->min + 0.37 * (s->max - s->min);
+    switch (s->kind) {
+      case SettingKind::Number:
+        s->set(r, geometry::exact(v));
+        break;
+      case SettingKind::Integer:
+        s->set(r, std::to_string(static_cast<long long>(std::floor(v))));
+        break;
+      case SettingKind::Band:
+        s->set(r, geometry::exact(v) + ":" + geometry::exact(s->max));
+        break;
+      case SettingKind::Flag:
+        s->set(r, s->get(r) == "true" ? "false" : "true");
+        break;
+      case SettingKind::Choice: {  // another choice that stands for itself (not "FILE")
+        const std::string current = s->get(r);
+        for (const std::string& c : s->choices) {
+          if (c == current) continue;
+          try {
+            s->set(r, c);
+            break;
+          } catch (const std::invalid_argument&) {
+          }
+        }
+        break;
+      }
+      default:
+        s->set(r, "x");
+    }
+  }
+  const auto stored = bake_properties(r.bake);
+  for (std::size_t i = 0; i < stored.size(); ++i)
+    EXPECT_NE(stored[i].second, defaults[i].second) << stored[i].first;
+  EXPECT_EQ(bake_properties(bake_options_from_properties(stored)), stored);
+
+  auto missing = stored;
+  missing.erase(missing.begin());
+  try {
+    bake_options_from_properties(missing);
+    ADD_FAILURE() << "a missing property was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "the file has no property " + stored.front().first);
+  }
+  auto garbled = stored;
+  const auto epsilon = std::find_if(garbled.begin(), garbled.end(),
+                                    [](const auto& p) { return p.first == "epsilon_m"; });
+  ASSERT_NE(epsilon, garbled.end());
+  epsilon->second = "one";
+  try {
+    bake_options_from_properties(garbled);
+    ADD_FAILURE() << "an unreadable property was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "--epsilon expects a number, got \"one\"");
   }
 }

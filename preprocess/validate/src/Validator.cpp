@@ -10,28 +10,6 @@
 namespace urbanpvs::validate {
 namespace {
 
-// Targets of one object: points spread over its surfaces when they block, over its box when it
-// does not (it may be as large as its box). Points shared by neighbouring surfaces (their
-// common edges) are kept once.
-std::vector<Vec3> target_points(const geometry::CityObject& o, double spacing) {
-  std::vector<Vec3> pts;
-  if (RayScene::blocks(o)) {
-    for (const geometry::Surface3& s : o.surfaces)
-      for (const Vec3& p : surface_points(s, spacing)) pts.push_back(p);
-  } else {
-    pts = box_points(o.bbox, spacing);
-  }
-  auto key = [](const Vec3& p) {
-    return std::array<long long, 3>{std::llround(p.x * 1e4), std::llround(p.y * 1e4),
-                                    std::llround(p.z * 1e4)};
-  };
-  std::sort(pts.begin(), pts.end(), [&](const Vec3& a, const Vec3& b) { return key(a) < key(b); });
-  pts.erase(std::unique(pts.begin(), pts.end(),
-                        [&](const Vec3& a, const Vec3& b) { return key(a) == key(b); }),
-            pts.end());
-  return pts;
-}
-
 // The segments of target_seen, counted in `cast`.
 //
 // Why five segments: a crack is a slot narrower than `crack` between two blockers (walls of
@@ -118,6 +96,25 @@ void cube_map_met(const RayScene& scene, const Vec3& v, int res, double reach,
 
 }  // namespace
 
+std::vector<Vec3> target_points(const geometry::CityObject& o, double spacing) {
+  std::vector<Vec3> pts;
+  if (RayScene::blocks(o)) {
+    for (const geometry::Surface3& s : o.surfaces)
+      for (const Vec3& p : surface_points(s, spacing)) pts.push_back(p);
+  } else {
+    pts = box_points(o.bbox, spacing);
+  }
+  auto key = [](const Vec3& p) {
+    return std::array<long long, 3>{std::llround(p.x * 1e4), std::llround(p.y * 1e4),
+                                    std::llround(p.z * 1e4)};
+  };
+  std::sort(pts.begin(), pts.end(), [&](const Vec3& a, const Vec3& b) { return key(a) < key(b); });
+  pts.erase(std::unique(pts.begin(), pts.end(),
+                        [&](const Vec3& a, const Vec3& b) { return key(a) == key(b); }),
+            pts.end());
+  return pts;
+}
+
 bool target_seen(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint32_t object,
                  double crack, std::size_t* rays) {
   std::size_t cast = 0;
@@ -135,7 +132,7 @@ void ValidationOptions::validate() const {
 }
 
 ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pvs,
-                          const ValidationOptions& options) {
+                          const ValidationOptions& options, const TightnessObserver& observer) {
   options.validate();
   if (pvs.object_count() != city.objects.size())
     throw std::runtime_error("the PVS file has " + std::to_string(pvs.object_count()) +
@@ -160,7 +157,7 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
   std::mt19937_64 rng(options.seed);
   runtime::PvsDecoder decoder(pvs);
   std::vector<char> in_pvs(city.objects.size()), seen(city.objects.size());
-  std::vector<std::uint32_t> seen_list;
+  std::vector<std::uint32_t> seen_list, pvs_list;
   std::vector<std::pair<std::uint32_t, Vec3>> met;
   for (std::size_t n = 0; n < options.viewpoints; ++n) {
     const auto cell = static_cast<std::uint32_t>(
@@ -197,6 +194,10 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
         if (!seen[o] && all_reach(scene, v, at, o, options.crack, report.rays)) record_seen(o, at);
       report.pvs_total += decoder.size();
       report.seen_total += seen_list.size();
+      if (observer) {
+        pvs_list.assign(decoder.begin(), decoder.end());
+        observer({cell, v, pvs_list, seen});
+      }
     }
     ++report.viewpoints;
   }

@@ -13,12 +13,10 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "urbanpvs/geometry/city/CityReader.hpp"
-#include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/ReadSettings.hpp"
 #include "urbanpvs/geometry/settings/SettingOptions.hpp"
 #include "urbanpvs/runtime/ExitCodes.hpp"
-#include "urbanpvs/validate/Validator.hpp"
+#include "urbanpvs/validate/ValidationCommand.hpp"
 
 int main(int argc, char** argv) {
   using namespace urbanpvs;
@@ -37,16 +35,7 @@ int main(int argc, char** argv) {
   app.add_option("--tightness-viewpoints", options.tightness_viewpoints,
                  "Viewpoints that also count the objects seen")
       ->capture_default_str();
-  app.add_option("--point-spacing", options.point_spacing,
-                 "Largest distance in m between target points on a surface (0.1 .. 1000)")
-      ->type_name("M")
-      ->capture_default_str();
-  app.add_option("--crack", options.crack,
-                 "Openings between buildings narrower than this many m are closed (0 .. 1; "
-                 "keep it at most the bake's --gap: wider hides real misses)")
-      ->type_name("M")
-      ->capture_default_str();
-  app.add_option("--seed", options.seed, "Random seed")->capture_default_str();
+  validate::add_target_options(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -59,39 +48,25 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
     return exit_code::kUsage;
   }
-  const std::string pvs_path = inputs.back();
-  inputs.pop_back();
-  try {
-    const geometry::City city = geometry::read_city(inputs, read);
-    runtime::PvsFile file;
-    runtime::LoadError error;
-    if (runtime::PvsFile::open_file(pvs_path.c_str(), file, {}, &error) != runtime::Status::kOk) {
-      std::fprintf(stderr, "urbanpvs-validate: %s: cannot load: %s\n", pvs_path.c_str(),
-                   error.detail);
-      return exit_code::for_load(error.status);
-    }
-    const validate::ValidationReport r = validate::validate(city, file, options);
-    std::printf("viewpoints: %zu, rays: %zu, misses: %zu\n", r.viewpoints, r.rays, r.misses.size());
-    std::printf(
-        "tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
-        r.tightness(),
-        double(r.pvs_total) /
-            double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
-        double(r.seen_total) /
-            double(std::max<std::size_t>(1, std::min(r.viewpoints, options.tightness_viewpoints))),
-        std::min(r.viewpoints, options.tightness_viewpoints));
-    for (std::size_t i = 0; i < r.misses.size() && i < 20; ++i) {
-      const validate::Miss& m = r.misses[i];
-      std::printf("MISS cell %u viewpoint (%.3f, %.3f, %.3f) sees %s at (%.3f, %.3f, %.3f)\n",
-                  m.cell, m.viewpoint.x, m.viewpoint.y, m.viewpoint.z, m.object_id.c_str(),
-                  m.target.x, m.target.y, m.target.z);
-    }
-    return r.misses.empty() ? exit_code::kOk : exit_code::kMisses;
-  } catch (const geometry::InputError& e) {
-    std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
-    return geometry::exit_code(e.problem());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "urbanpvs-validate: %s: %s\n", pvs_path.c_str(), e.what());
-    return exit_code::kProcessing;
-  }
+  return validate::run_on_city_and_pvs(
+      "urbanpvs-validate", inputs, read, [&](const auto& city, const auto& file) {
+        const validate::ValidationReport r = validate::validate(city, file, options);
+        std::printf("viewpoints: %zu, rays: %zu, misses: %zu\n", r.viewpoints, r.rays,
+                    r.misses.size());
+        std::printf(
+            "tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
+            r.tightness(),
+            double(r.pvs_total) / double(std::max<std::size_t>(
+                                      1, std::min(r.viewpoints, options.tightness_viewpoints))),
+            double(r.seen_total) / double(std::max<std::size_t>(
+                                       1, std::min(r.viewpoints, options.tightness_viewpoints))),
+            std::min(r.viewpoints, options.tightness_viewpoints));
+        for (std::size_t i = 0; i < r.misses.size() && i < 20; ++i) {
+          const validate::Miss& m = r.misses[i];
+          std::printf("MISS cell %u viewpoint (%.3f, %.3f, %.3f) sees %s at (%.3f, %.3f, %.3f)\n",
+                      m.cell, m.viewpoint.x, m.viewpoint.y, m.viewpoint.z, m.object_id.c_str(),
+                      m.target.x, m.target.y, m.target.z);
+        }
+        return r.misses.empty() ? exit_code::kOk : exit_code::kMisses;
+      });
 }

@@ -58,6 +58,12 @@ const Setting* find_setting(std::string key);
 /// value) in table order. Stored in every output file (BakeScene::pvs_file) and part of
 /// urbanpvs-preprocess's journal fingerprint; bake_city stores exactly these.
 std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptions& options);
+/// The inverse of bake_properties: the options a file's properties record (urbanpvs-explain
+/// re-bakes cells with them). Settings that bake_properties does not store (the region, the
+/// gap of the cells, which the scene takes from the blocks) keep their defaults. Throws
+/// std::invalid_argument naming a property that is missing or does not read back.
+BakeOptions bake_options_from_properties(
+    const std::vector<std::pair<std::string, std::string>>& properties);
 /// All result settings of a request (Read stage included), in table order.
 std::vector<std::pair<std::string, std::string>> request_properties(const PreprocessRequest& r);
 

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,22 @@ struct ValidationReport {
   double tightness() const { return seen_total ? double(pvs_total) / double(seen_total) : 0; }
 };
 
+/// What one tightness viewpoint found: its cell's PVS and, per object, whether it was seen.
+/// Valid only during the call of the observer.
+struct TightnessViewpoint {
+  std::uint32_t cell = 0;
+  Vec3 viewpoint;
+  std::span<const std::uint32_t> pvs;  ///< the cell's PVS as the file gives it
+  std::span<const char> seen;          ///< seen[o] != 0: object o was seen from the viewpoint
+};
+/// Called for each tightness viewpoint, in order (urbanpvs-explain takes the excess from it).
+using TightnessObserver = std::function<void(const TightnessViewpoint&)>;
+
+/// The points of an object that the validator aims at: spread over its surfaces, no two
+/// neighbours farther apart than `spacing`, when it blocks; over its box when it does not (it
+/// may be as large as its box). Points shared by neighbouring surfaces are kept once.
+std::vector<Vec3> target_points(const geometry::CityObject& o, double spacing);
+
 /// Whether target q of `object` is seen from v through an opening at least `crack` (m) wide:
 /// the segment v→q and four parallel ones crack/2 to its sides (horizontally and vertically,
 /// across it) all reach it (RayScene::reaches). Why this closes cracks and hides no wider view:
@@ -70,6 +88,6 @@ bool target_seen(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint3
 /// differ), std::invalid_argument for options out of their limits. `city` must be read with
 /// the same options as for the bake.
 ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pvs,
-                          const ValidationOptions& options);
+                          const ValidationOptions& options, const TightnessObserver& observer = {});
 
 }  // namespace urbanpvs::validate

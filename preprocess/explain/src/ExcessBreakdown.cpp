@@ -1,0 +1,284 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/explain/ExcessBreakdown.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "urbanpvs/preprocess/bake/BakeSettings.hpp"
+#include "urbanpvs/preprocess/visibility/CellVisibility.hpp"
+#include "urbanpvs/validate/RayScene.hpp"
+
+namespace urbanpvs::explain {
+namespace {
+
+using validate::Vec3;
+
+// Step 2's points of a cell's prism. Corners and edges are pulled 1 mm towards the centroid:
+// a corner of a cell lies on a building's wall, and a viewpoint in the wall's plane would look
+// along it.
+std::vector<Vec3> cell_points(const runtime::CellGeometry& c, std::size_t random,
+                              std::uint32_t cell) {
+  const auto& t = c.triangle;
+  const double cx = (t[0].x + t[1].x + t[2].x) / 3, cy = (t[0].y + t[1].y + t[2].y) / 3;
+  auto inward = [&](double x, double y, double z) {
+    const double d = std::hypot(x - cx, y - cy);
+    const double f = d > 1e-3 ? 1e-3 / d : 0;
+    return Vec3{x + f * (cx - x), y + f * (cy - y), z};
+  };
+  std::vector<Vec3> out;
+  for (int k = 0; k < 3; ++k) {
+    out.push_back(inward(t[k].x, t[k].y, c.z_max));
+    const auto& n = t[(k + 1) % 3];
+    out.push_back(inward(0.5 * (t[k].x + n.x), 0.5 * (t[k].y + n.y), c.z_max));
+  }
+  out.push_back({cx, cy, c.z_min});
+  // Random points, as the validator draws its viewpoints: the top face for even ones, the
+  // prism for odd ones. Seeded by the cell: the same cell tries the same points.
+  std::mt19937_64 rng(0x9e3779b97f4a7c15ULL ^ cell);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (std::size_t i = 0; i < random; ++i) {
+    const double r1 = std::sqrt(u(rng)), r2 = u(rng);
+    const double x = (1 - r1) * t[0].x + r1 * (1 - r2) * t[1].x + r1 * r2 * t[2].x;
+    const double y = (1 - r1) * t[0].y + r1 * (1 - r2) * t[1].y + r1 * r2 * t[2].y;
+    const double z = i % 2 == 0 ? c.z_max : c.z_min + u(rng) * (c.z_max - c.z_min);
+    out.push_back({x, y, z});
+  }
+  return out;
+}
+
+bool seen_from(const validate::RayScene& scene, const Vec3& v, const std::vector<Vec3>& targets,
+               std::uint32_t object, double crack) {
+  return std::any_of(targets.begin(), targets.end(), [&](const Vec3& q) {
+    return validate::target_seen(scene, v, q, object, crack);
+  });
+}
+
+// A cell of the file and of a rebuilt scene are the same cell when their corners agree to the
+// file's millimetre quantization (format 2.2 stores vertices in mm).
+void check_same_cells(const preprocess::BakeScene& scene, const runtime::PvsFile& pvs) {
+  if (scene.cell_count() != pvs.cell_count())
+    throw std::runtime_error("the file has " + std::to_string(pvs.cell_count()) +
+                             " cells, its settings give " + std::to_string(scene.cell_count()) +
+                             " (another region, version or city?)");
+  for (std::uint32_t i = 0; i < pvs.cell_count(); ++i) {
+    runtime::CellGeometry g;
+    pvs.cell(i, g);
+    const geometry::ViewCell& c = scene.mesh().cells[i];
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(g.triangle[k].x - c.corner[k].x) > 2e-3 ||
+          std::abs(g.triangle[k].y - c.corner[k].y) > 2e-3)
+        throw std::runtime_error("cell " + std::to_string(i) +
+                                 " of the file is not the cell its settings give");
+  }
+}
+
+// Calls work(thread, i) for every i < n on `threads` threads (the calling one included); the
+// first exception is rethrown once all have stopped. Deterministic when work(·, i) is.
+void parallel_for(std::size_t n, unsigned threads,
+                  const std::function<void(unsigned, std::size_t)>& work) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto run = [&](unsigned thread) {
+    try {
+      for (std::size_t i; (i = next++) < n;) work(thread, i);
+    } catch (...) {
+      const std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = n;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(run, t);
+  run(0);
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+// The PVS of each of `cells` baked with `options`, one CellVisibility per thread (each owns
+// its renderer). `check` sees the scene first.
+std::vector<std::vector<std::uint32_t>> bake_cells(
+    const geometry::City& city, const preprocess::BakeOptions& options,
+    const std::vector<std::uint32_t>& cells, unsigned threads,
+    const std::function<void(const preprocess::BakeScene&)>& check = {}) {
+  const preprocess::BakeScene scene(city, options);
+  if (check) check(scene);
+  std::vector<std::unique_ptr<preprocess::CellVisibility>> visibility(threads);
+  std::vector<std::vector<std::uint32_t>> out(cells.size());
+  parallel_for(cells.size(), threads, [&](unsigned t, std::size_t i) {
+    if (!visibility[t]) visibility[t] = std::make_unique<preprocess::CellVisibility>(scene);
+    out[i] = visibility[t]->pvs(cells[i]);
+  });
+  return out;
+}
+
+}  // namespace
+
+const char* cause_name(ExcessCause cause) {
+  switch (cause) {
+    case ExcessCause::SeenFiner:
+      return "seen-finer";
+    case ExcessCause::ElsewhereInCell:
+      return "elsewhere-in-cell";
+    case ExcessCause::Epsilon:
+      return "epsilon";
+    case ExcessCause::Pixel:
+      return "pixel";
+    case ExcessCause::FarField:
+      return "far-field";
+    case ExcessCause::OccluderModel:
+      break;
+  }
+  return "occluder-model";
+}
+
+void ExplainOptions::validate() const {
+  validation.validate();
+  if (!(finer_spacing >= 0.01 && finer_spacing <= 1))
+    throw std::invalid_argument("finer spacing must be 0.01 .. 1");
+  if (cell_viewpoints > 4096) throw std::invalid_argument("cell viewpoints must be 0 .. 4096");
+  if (pixel_divisor < 1 || pixel_divisor > 16)
+    throw std::invalid_argument("pixel divisor must be 1 .. 16");
+}
+
+double ExcessBreakdown::tightness_without(ExcessCause cause) const {
+  const auto n = static_cast<double>(counts[static_cast<std::size_t>(cause)]);
+  const auto pvs = static_cast<double>(validation.pvs_total);
+  const auto seen = static_cast<double>(validation.seen_total);
+  if (seen == 0) return 0;
+  return cause == ExcessCause::SeenFiner ? pvs / (seen + n) : (pvs - n) / seen;
+}
+
+preprocess::BakeOptions bake_options_of(const runtime::PvsFile& pvs) {
+  std::vector<std::pair<std::string, std::string>> properties;
+  for (std::size_t i = 0; i < pvs.property_count(); ++i) {
+    std::string_view key, value;
+    pvs.property(i, key, value);
+    properties.emplace_back(std::string(key), std::string(value));
+  }
+  return preprocess::bake_options_from_properties(properties);
+}
+
+ExcessBreakdown explain_excess(const geometry::City& city, const runtime::PvsFile& pvs,
+                               const preprocess::BakeOptions& bake, const ExplainOptions& options) {
+  options.validate();
+  ExcessBreakdown out;
+  // The validator's own pass: its tightness viewpoints and what each saw.
+  out.validation =
+      validate::validate(city, pvs, options.validation, [&](const validate::TightnessViewpoint& t) {
+        const std::size_t index = out.viewpoints.size();
+        std::size_t seen = 0;
+        for (const std::uint32_t o : t.pvs)
+          if (!t.seen[o])
+            out.objects.push_back({index, t.cell, t.viewpoint, o, ExcessCause::OccluderModel});
+        for (const char s : t.seen) seen += s != 0;
+        out.viewpoints.push_back({t.cell, t.pvs.size(), seen});
+      });
+
+  // Steps 1 and 2: ray casting in the input's surfaces (the validator's ground truth), one
+  // RayScene per thread.
+  const unsigned threads = std::max(1u, options.threads);
+  std::vector<std::unique_ptr<validate::RayScene>> scenes(threads);
+  auto scene_of = [&](unsigned t) -> const validate::RayScene& {
+    if (!scenes[t]) scenes[t] = std::make_unique<validate::RayScene>(city);
+    return *scenes[t];
+  };
+  const double crack = options.validation.crack;
+  const double spacing = options.validation.point_spacing;
+  parallel_for(out.objects.size(), threads, [&](unsigned t, std::size_t i) {
+    ExcessObject& e = out.objects[i];
+    const auto finer =
+        validate::target_points(city.objects[e.object], spacing * options.finer_spacing);
+    if (seen_from(scene_of(t), e.at, finer, e.object, crack)) e.cause = ExcessCause::SeenFiner;
+  });
+  // Step 2 once per (cell, object), however many viewpoints of the cell had it.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const ExcessObject& e : out.objects)
+    if (e.cause != ExcessCause::SeenFiner) pairs.emplace_back(e.cell, e.object);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<char> seen_in_cell(pairs.size(), 0);
+  parallel_for(pairs.size(), threads, [&](unsigned t, std::size_t i) {
+    const auto [cell, object] = pairs[i];
+    runtime::CellGeometry g;
+    pvs.cell(cell, g);
+    const auto aims = validate::target_points(city.objects[object], spacing);
+    for (const Vec3& p : cell_points(g, options.cell_viewpoints, cell))
+      if (seen_from(scene_of(t), p, aims, object, crack)) {
+        seen_in_cell[i] = 1;
+        return;
+      }
+  });
+  std::vector<ExcessObject*> open;
+  for (ExcessObject& e : out.objects) {
+    if (e.cause == ExcessCause::SeenFiner) continue;
+    const auto at = std::lower_bound(pairs.begin(), pairs.end(), std::pair{e.cell, e.object});
+    if (seen_in_cell[static_cast<std::size_t>(at - pairs.begin())])
+      e.cause = ExcessCause::ElsewhereInCell;
+    else
+      open.push_back(&e);
+  }
+
+  // The cells of the open objects, baked as the file was (which must give its PVS), then with
+  // one more mechanism relaxed per pass; an object that a pass leaves out is put down to it.
+  auto open_cells = [&] {
+    std::vector<std::uint32_t> cells;
+    for (const ExcessObject* e : open) cells.push_back(e->cell);
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    return cells;
+  };
+  std::vector<std::uint32_t> cells = open_cells();
+  out.cells_rebaked = cells.size();
+  if (!cells.empty()) {
+    const auto as_filed =
+        bake_cells(city, bake, cells, threads, [&](const auto& s) { check_same_cells(s, pvs); });
+    runtime::PvsDecoder decoder(pvs);
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (decoder.decode(cells[i]) != runtime::Status::kOk ||
+          !std::equal(decoder.begin(), decoder.end(), as_filed[i].begin(), as_filed[i].end()))
+        throw std::runtime_error("cell " + std::to_string(cells[i]) +
+                                 ": the file's PVS is not what its settings bake (another "
+                                 "version of urbanpvs-preprocess, or a changed file?)");
+    }
+  }
+  preprocess::BakeOptions relaxed = bake;
+  for (const ExcessCause cause :
+       {ExcessCause::Epsilon, ExcessCause::FarField, ExcessCause::Pixel}) {
+    if (cells.empty()) break;
+    // Cumulative, but the finer pixel goes with the bake's own maps: maps grown over a whole
+    // city at a quarter of the pixel would be 16x larger (and the far field was shown to lose
+    // nothing against them, README "Where the excess comes from").
+    if (cause == ExcessCause::Epsilon) relaxed.shrink_override = 0;
+    if (cause == ExcessCause::FarField) relaxed.max_map = 65536;
+    if (cause == ExcessCause::Pixel) {
+      relaxed.pixel = bake.pixel / options.pixel_divisor;
+      relaxed.max_map = bake.max_map;
+    }
+    const auto baked = bake_cells(city, relaxed, cells, threads);
+    std::vector<ExcessObject*> still;
+    for (ExcessObject* e : open) {
+      const auto& list =
+          baked[std::lower_bound(cells.begin(), cells.end(), e->cell) - cells.begin()];
+      if (std::binary_search(list.begin(), list.end(), e->object))
+        still.push_back(e);
+      else
+        e->cause = cause;
+    }
+    open = std::move(still);
+    cells = open_cells();
+  }
+  for (const ExcessObject& e : out.objects) ++out.counts[static_cast<std::size_t>(e.cause)];
+  return out;
+}
+
+}  // namespace urbanpvs::explain
