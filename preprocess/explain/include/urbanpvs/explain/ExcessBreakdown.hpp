@@ -60,7 +60,8 @@ struct ExplainOptions {
   std::size_t cell_viewpoints = 32;
   /// Pixels are this many times smaller in step 5 [Limit: 1 .. 16]
   int pixel_divisor = 4;
-  unsigned threads = 1;  ///< threads re-baking cells (the result does not depend on it)
+  /// Threads casting rays and baking cells again (the result does not depend on it)
+  unsigned threads = 1;
 
   /// Throws std::invalid_argument naming the first value out of its limits.
   void validate() const;
