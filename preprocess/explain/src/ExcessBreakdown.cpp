@@ -41,25 +41,32 @@ std::vector<Vec3> cell_points(const runtime::CellGeometry& c, std::size_t random
     out.push_back(inward(0.5 * (t[k].x + n.x), 0.5 * (t[k].y + n.y), c.z_max));
   }
   out.push_back({cx, cy, c.z_min});
-  // Random points, as the validator draws its viewpoints: the top face for even ones, the
-  // prism for odd ones. Seeded by the cell: the same cell tries the same points.
+  // Random points, as the validator draws its viewpoints (the top face for even ones, the
+  // prism for odd ones), seeded by the cell: the same cell tries the same points.
   std::mt19937_64 rng(0x9e3779b97f4a7c15ULL ^ cell);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (std::size_t i = 0; i < random; ++i) {
-    const double r1 = std::sqrt(u(rng)), r2 = u(rng);
-    const double x = (1 - r1) * t[0].x + r1 * (1 - r2) * t[1].x + r1 * r2 * t[2].x;
-    const double y = (1 - r1) * t[0].y + r1 * (1 - r2) * t[1].y + r1 * r2 * t[2].y;
-    const double z = i % 2 == 0 ? c.z_max : c.z_min + u(rng) * (c.z_max - c.z_min);
-    out.push_back({x, y, z});
-  }
+  for (std::size_t i = 0; i < random; ++i)
+    out.push_back(validate::random_viewpoint(c, i % 2 == 0, rng));
   return out;
 }
 
 bool seen_from(const validate::RayScene& scene, const Vec3& v, const std::vector<Vec3>& targets,
                std::uint32_t object, double crack) {
-  return std::any_of(targets.begin(), targets.end(), [&](const Vec3& q) {
-    return validate::target_seen(scene, v, q, object, crack);
-  });
+  return validate::first_target_seen(scene, v, targets, object, crack) != nullptr;
+}
+
+// The runs of equal objects in `items` (sorted by object first): [begin, end) index pairs, so
+// that an object's targets are made once for all its items.
+template <typename Item, typename ObjectOf>
+std::vector<std::pair<std::size_t, std::size_t>> runs_by_object(const std::vector<Item>& items,
+                                                                ObjectOf object_of) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  for (std::size_t i = 0; i < items.size();) {
+    std::size_t j = i + 1;
+    while (j < items.size() && object_of(items[j]) == object_of(items[i])) ++j;
+    runs.emplace_back(i, j);
+    i = j;
+  }
+  return runs;
 }
 
 // A cell of the file and of a rebuilt scene are the same cell when their corners agree to the
@@ -194,34 +201,50 @@ ExcessBreakdown explain_excess(const geometry::City& city, const runtime::PvsFil
   };
   const double crack = options.validation.crack;
   const double spacing = options.validation.point_spacing;
-  parallel_for(out.objects.size(), threads, [&](unsigned t, std::size_t i) {
-    ExcessObject& e = out.objects[i];
-    const auto finer =
-        validate::target_points(city.objects[e.object], spacing * options.finer_spacing);
-    if (seen_from(scene_of(t), e.at, finer, e.object, crack)) e.cause = ExcessCause::SeenFiner;
+  // Step 1, by object: its finer targets are made once for all the viewpoints that kept it.
+  std::vector<std::size_t> by_object(out.objects.size());
+  for (std::size_t i = 0; i < by_object.size(); ++i) by_object[i] = i;
+  std::stable_sort(by_object.begin(), by_object.end(), [&](std::size_t a, std::size_t b) {
+    return out.objects[a].object < out.objects[b].object;
   });
-  // Step 2 once per (cell, object), however many viewpoints of the cell had it.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  const auto object_runs =
+      runs_by_object(by_object, [&](std::size_t i) { return out.objects[i].object; });
+  parallel_for(object_runs.size(), threads, [&](unsigned t, std::size_t r) {
+    const auto [begin, end] = object_runs[r];
+    const std::uint32_t object = out.objects[by_object[begin]].object;
+    const auto finer =
+        validate::target_points(city.objects[object], spacing * options.finer_spacing);
+    for (std::size_t k = begin; k < end; ++k) {
+      ExcessObject& e = out.objects[by_object[k]];
+      if (seen_from(scene_of(t), e.at, finer, object, crack)) e.cause = ExcessCause::SeenFiner;
+    }
+  });
+  // Step 2 once per (cell, object), however many viewpoints of the cell had it; by object too.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (object, cell)
   for (const ExcessObject& e : out.objects)
-    if (e.cause != ExcessCause::SeenFiner) pairs.emplace_back(e.cell, e.object);
+    if (e.cause != ExcessCause::SeenFiner) pairs.emplace_back(e.object, e.cell);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   std::vector<char> seen_in_cell(pairs.size(), 0);
-  parallel_for(pairs.size(), threads, [&](unsigned t, std::size_t i) {
-    const auto [cell, object] = pairs[i];
-    runtime::CellGeometry g;
-    pvs.cell(cell, g);
+  const auto pair_runs = runs_by_object(pairs, [](const auto& p) { return p.first; });
+  parallel_for(pair_runs.size(), threads, [&](unsigned t, std::size_t r) {
+    const auto [begin, end] = pair_runs[r];
+    const std::uint32_t object = pairs[begin].first;
     const auto aims = validate::target_points(city.objects[object], spacing);
-    for (const Vec3& p : cell_points(g, options.cell_viewpoints, cell))
-      if (seen_from(scene_of(t), p, aims, object, crack)) {
-        seen_in_cell[i] = 1;
-        return;
-      }
+    for (std::size_t k = begin; k < end; ++k) {
+      runtime::CellGeometry g;
+      pvs.cell(pairs[k].second, g);
+      for (const Vec3& p : cell_points(g, options.cell_viewpoints, pairs[k].second))
+        if (seen_from(scene_of(t), p, aims, object, crack)) {
+          seen_in_cell[k] = 1;
+          break;
+        }
+    }
   });
   std::vector<ExcessObject*> open;
   for (ExcessObject& e : out.objects) {
     if (e.cause == ExcessCause::SeenFiner) continue;
-    const auto at = std::lower_bound(pairs.begin(), pairs.end(), std::pair{e.cell, e.object});
+    const auto at = std::lower_bound(pairs.begin(), pairs.end(), std::pair{e.object, e.cell});
     if (seen_in_cell[static_cast<std::size_t>(at - pairs.begin())])
       e.cause = ExcessCause::ElsewhereInCell;
     else

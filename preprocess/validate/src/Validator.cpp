@@ -61,16 +61,6 @@ bool all_reach(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint32_
   return true;
 }
 
-Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(0, 1);
-  double r1 = std::sqrt(u(rng)), r2 = u(rng);
-  const auto& t = c.triangle;
-  const double x = (1 - r1) * t[0].x + r1 * (1 - r2) * t[1].x + r1 * r2 * t[2].x;
-  const double y = (1 - r1) * t[0].y + r1 * (1 - r2) * t[1].y + r1 * r2 * t[2].y;
-  const double z = top ? c.z_max : c.z_min + u(rng) * (c.z_max - c.z_min);
-  return {x, y, z};
-}
-
 // The objects the rays of a cube map around v meet first, with the points where they meet them.
 void cube_map_met(const RayScene& scene, const Vec3& v, int res, double reach,
                   std::vector<std::pair<std::uint32_t, Vec3>>& met, std::size_t& rays) {
@@ -113,6 +103,24 @@ std::vector<Vec3> target_points(const geometry::CityObject& o, double spacing) {
                         [&](const Vec3& a, const Vec3& b) { return key(a) == key(b); }),
             pts.end());
   return pts;
+}
+
+Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  double r1 = std::sqrt(u(rng)), r2 = u(rng);
+  const auto& t = c.triangle;
+  const double x = (1 - r1) * t[0].x + r1 * (1 - r2) * t[1].x + r1 * r2 * t[2].x;
+  const double y = (1 - r1) * t[0].y + r1 * (1 - r2) * t[1].y + r1 * r2 * t[2].y;
+  const double z = top ? c.z_max : c.z_min + u(rng) * (c.z_max - c.z_min);
+  return {x, y, z};
+}
+
+const Vec3* first_target_seen(const RayScene& scene, const Vec3& v,
+                              const std::vector<Vec3>& targets, std::uint32_t object, double crack,
+                              std::size_t* rays) {
+  for (const Vec3& q : targets)
+    if (target_seen(scene, v, q, object, crack, rays)) return &q;
+  return nullptr;
 }
 
 bool target_seen(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint32_t object,
@@ -179,11 +187,8 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
     };
     for (std::uint32_t o = 0; o < city.objects.size(); ++o) {
       if (in_pvs[o] && !measure) continue;
-      for (const Vec3& q : points[o])
-        if (all_reach(scene, v, q, o, options.crack, report.rays)) {
-          record_seen(o, q);
-          break;
-        }
+      if (const Vec3* q = first_target_seen(scene, v, points[o], o, options.crack, &report.rays))
+        record_seen(o, *q);
     }
     if (measure) {
       // The cube map's rays meet real surfaces: what one meets first is seen there, when the

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -83,6 +84,15 @@ std::vector<Vec3> target_points(const geometry::CityObject& o, double spacing);
 /// see Validator.cpp. Adds the segments cast to *rays when given.
 bool target_seen(const RayScene& scene, const Vec3& v, const Vec3& q, std::uint32_t object,
                  double crack, std::size_t* rays = nullptr);
+
+/// The first of `targets` (of `object`) that target_seen finds seen from v, or nullptr.
+const Vec3* first_target_seen(const RayScene& scene, const Vec3& v,
+                              const std::vector<Vec3>& targets, std::uint32_t object, double crack,
+                              std::size_t* rays = nullptr);
+
+/// A random viewpoint of a cell, as the validator draws them: uniform over the triangle, on the
+/// top face when `top`, at a uniform height in the prism otherwise.
+Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_64& rng);
 
 /// Throws std::runtime_error when the file does not belong to the city (object count or ids
 /// differ), std::invalid_argument for options out of their limits. `city` must be read with
