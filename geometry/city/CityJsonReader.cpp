@@ -16,6 +16,7 @@
 #include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/city/SteppedRoof.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
 namespace urbanpvs::geometry::detail {
@@ -587,6 +588,24 @@ GroundlessFootprint groundless_footprint(const PartResult& part, const std::vect
   return out;
 }
 
+// Every surface of the part that may bound it from above, for its stepped height field
+// (SteppedRoof.hpp): roofs and terraces, and walls and ceilings that are not vertical (a
+// leaning wall or an overhang's underside is met first by a vertical line under it). Interior
+// and opening types do not count: they lie inside the building or in its roof. Their plans are
+// cleaned without counting repairs: a face is not refused or repaired for how it projects.
+std::vector<RoofFace> roof_faces(const PartResult& part, const std::string& file) {
+  std::vector<RoofFace> out;
+  ReadReport scratch;
+  const ReadOptions lenient;
+  for (const Classified& c : part.faces) {
+    if (c.kind != Classified::Top && c.kind != Classified::Wall && c.kind != Classified::Ceiling)
+      continue;
+    std::vector<Polygon> plan = plan_polygons({&c}, file, part.id, lenient, scratch);
+    if (!plan.empty()) out.push_back(roof_face(c.rings, std::move(plan)));
+  }
+  return out;
+}
+
 struct Objects {
   const CityJsonFile& file;
   std::unordered_map<std::string, const Json*> by_id;
@@ -728,8 +747,14 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
       footprint = std::move(g.footprint);
     }
     lost = lost || footprint.empty();
-    if (r->top > r->zmin)
+    std::vector<RoofFace> roof;
+    if (objs.options.roof_step && !occluder.empty()) roof = roof_faces(*r, objs.file.file());
+    if (!roof.empty()) {
+      for (OccluderPrism& p : stepped_occluders(occluder, r->zmin, roof, *objs.options.roof_step))
+        o.occluders.push_back(std::move(p));
+    } else if (r->top > r->zmin) {
       for (const Polygon& p : occluder) o.occluders.push_back({p, r->zmin, r->top});
+    }
     for (Polygon& p : footprint) ground_parts.push_back(std::move(p));
   }
   o.footprint = ground_parts.size() > 1 ? union_polygons(ground_parts) : std::move(ground_parts);

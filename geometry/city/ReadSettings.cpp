@@ -46,6 +46,26 @@ SettingTable<ReadOptions> make_table() {
                                 "Tallest plausible building: taller input is refused; buildings "
                                 "of unknown height are tested up to it",
                                 [](R& r) -> double& { return r.max_height; }));
+  // Off by default: the stepped field makes LoD2 bakes tighter but slower (README, "Roofs as
+  // stepped height fields"), a trade the user chooses.
+  auto roof = number_setting<R>(
+      "roof-step", "m", S::Read, 0, 100,
+      "CityJSON: occluders as a stepped height field under each roof, with levels at least this "
+      "far apart (also on sloped roofs); 0: a level at each roof surface's lowest point; off: "
+      "one prism per part at its roof's lowest point",
+      {});
+  roof.default_text = "off";
+  roof.get = [](const R& r) { return r.roof_step ? exact(*r.roof_step) : std::string("off"); };
+  roof.set = [s = roof](R& r, const std::string& text) {
+    if (text == "off") {
+      r.roof_step.reset();
+      return;
+    }
+    const double v = setting_detail::parse_number(s.key, text);
+    setting_detail::check_limits(s, v, text);
+    r.roof_step = v;
+  };
+  t.push_back(std::move(roof));
   auto payload = text_setting<R>(
       "payload", S::Read,
       "Attribute (CityJSON), property (GeoJSON) or tag (OSM) whose value each object carries "

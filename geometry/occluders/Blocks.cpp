@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "BoundarySimplification.hpp"
+#include "urbanpvs/geometry/city/RingCleanup.hpp"
 #include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
@@ -100,28 +101,43 @@ double quantised(double top, double step) {
   return step > 0 ? std::floor(top / step) * step : top;
 }
 
+// The level's outline simplified, where that leaves every ring simple; else as the union gave
+// it. A ring that still crosses itself (the union's doubles, its micrometre pulls, on stepped
+// roofs' many nearly coincident edges) is dropped: CGAL's straight skeleton checks no
+// precondition and crashed on such a level of the 3D BAG tile, and an occluder may always be
+// smaller.
+std::vector<Polygon> valid_outline(std::vector<Polygon> exact, double tolerance) {
+  std::vector<Polygon> simple = detail::simplify_boundaries(exact, tolerance);
+  if (std::all_of(simple.begin(), simple.end(),
+                  [](const Polygon& p) { return polygon_defect(p).empty(); }))
+    return simple;
+  std::erase_if(exact, [](const Polygon& p) { return !polygon_defect(p).empty(); });
+  return exact;
+}
+
 Block build_block(std::vector<const Prism*> members, const BlockOptions& options) {
   Block block;
   std::sort(members.begin(), members.end(),
             [](const Prism* a, const Prism* b) { return a->top > b->top; });
   // Levels from the top down: each level is the union of every prism that reaches it. The union
-  // always starts from the grown footprints themselves: feeding a previous union back in would
-  // feed CGAL rings rounded to doubles (and pulled apart where they touch), which can be
-  // slightly self-intersecting, a precondition CGAL's join does not check (it crashed on a
-  // generated 1 km² city).
-  std::vector<Polygon> pieces;
+  // grows in exact arithmetic (GrowingUnion) and is rounded to doubles only for the level's
+  // outline: feeding a previous rounded union back in would feed CGAL rings pulled apart
+  // where they touch, which can be slightly self-intersecting, a precondition CGAL's join does
+  // not check (it crashed on a generated 1 km² city).
+  GrowingUnion reaching;
   std::vector<BlockLevel> descending;
   for (std::size_t i = 0; i < members.size();) {
     const double level = quantised(members[i]->top, options.height_step);
+    std::vector<Polygon> pieces;
     for (; i < members.size() && quantised(members[i]->top, options.height_step) == level; ++i) {
       block.objects.push_back(members[i]->object);
       block.bounds.extend(members[i]->box);
       for (Polygon& g : grow_polygon(*members[i]->footprint, 0.5 * options.gap_tolerance))
         pieces.push_back(std::move(g));
     }
-    descending.push_back(
-        {level, detail::simplify_boundaries(union_polygons(pieces), options.outline_tolerance),
-         0.5 * options.gap_tolerance + options.outline_tolerance});
+    reaching.add(pieces);
+    descending.push_back({level, valid_outline(reaching.polygons(), options.outline_tolerance),
+                          0.5 * options.gap_tolerance + options.outline_tolerance});
   }
   std::sort(block.objects.begin(), block.objects.end());
   block.objects.erase(std::unique(block.objects.begin(), block.objects.end()), block.objects.end());

@@ -145,9 +145,7 @@ void append_from_cgal(const CgalPolygonWithHoles& p, std::vector<Polygon>& out) 
   }
 }
 
-}  // namespace
-
-std::vector<Polygon> union_polygons(const std::vector<Polygon>& polys) {
+CGAL::Polygon_set_2<K> polygon_set(const std::vector<Polygon>& polys) {
   std::vector<CgalPolygonWithHoles> in;
   in.reserve(polys.size());
   for (const Polygon& poly : polys) {
@@ -157,13 +155,53 @@ std::vector<Polygon> union_polygons(const std::vector<Polygon>& polys) {
   }
   CGAL::Polygon_set_2<K> set;
   set.join(in.begin(), in.end());
+  return set;
+}
 
+std::vector<Polygon> from_set(const CGAL::Polygon_set_2<K>& set) {
   std::vector<CgalPolygonWithHoles> result;
   set.polygons_with_holes(std::back_inserter(result));
   std::vector<Polygon> out;
   out.reserve(result.size());
   for (const CgalPolygonWithHoles& p : result) append_from_cgal(p, out);
   return out;
+}
+
+}  // namespace
+
+std::vector<Polygon> union_polygons(const std::vector<Polygon>& polys) {
+  return from_set(polygon_set(polys));
+}
+
+struct GrowingUnion::Exact {
+  CGAL::Polygon_set_2<K> set;
+};
+
+GrowingUnion::GrowingUnion() : exact_(std::make_unique<Exact>()) {}
+GrowingUnion::~GrowingUnion() = default;
+
+void GrowingUnion::add(const std::vector<Polygon>& polys) {
+  if (!polys.empty()) exact_->set.join(polygon_set(polys));
+}
+
+std::vector<Polygon> GrowingUnion::polygons() const {
+  return from_set(exact_->set);
+}
+
+std::vector<Polygon> intersect_polygons(const std::vector<Polygon>& a,
+                                        const std::vector<Polygon>& b) {
+  if (a.empty() || b.empty()) return {};
+  CGAL::Polygon_set_2<K> set = polygon_set(a);
+  set.intersection(polygon_set(b));
+  return from_set(set);
+}
+
+std::vector<Polygon> subtract_polygons(const std::vector<Polygon>& a,
+                                       const std::vector<Polygon>& b) {
+  if (a.empty() || b.empty()) return b.empty() && a.size() > 1 ? union_polygons(a) : a;
+  CGAL::Polygon_set_2<K> set = polygon_set(a);
+  set.difference(polygon_set(b));
+  return from_set(set);
 }
 
 }  // namespace urbanpvs::geometry

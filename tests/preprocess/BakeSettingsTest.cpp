@@ -68,8 +68,8 @@ nlohmann::json json_value(const Setting& s, const std::string& text) {
 }
 
 bool has_file_default(const Setting& s) {
-  return s.kind == SettingKind::Path || s.kind == SettingKind::Text ||
-         s.key == "default-height";  // "none" is no value
+  return s.kind == SettingKind::Path || s.kind == SettingKind::Text || s.key == "default-height" ||
+         s.key == "roof-step";  // "none", "off" are no values
 }
 
 }  // namespace

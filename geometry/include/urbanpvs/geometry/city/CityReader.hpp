@@ -40,6 +40,12 @@ struct ReadOptions {
   /// city's terrain (DemTerrain.hpp), replacing a CityJSON TINRelief: GeoJSON and OpenStreetMap
   /// buildings stand on it and view cells follow it. Empty: none.
   std::string terrain_path;
+  /// CityJSON parts: set, the occluder is a stepped height field under the part's own surfaces
+  /// (SteppedRoof.hpp), with a level at each surface's lowest point and, on sloped roofs,
+  /// every roof_step above it; levels closer than that merge (0: no levels between a sloped
+  /// roof's eaves and its top). Unset: one prism per part, cut at the lowest point of its
+  /// roof. [Units: m]
+  std::optional<double> roof_step;
 };
 
 /// Reads every file into one city (all files must share one coordinate reference system).
