@@ -93,8 +93,12 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
 std::vector<Vec3> BakeScene::samples(std::uint32_t cell) const {
   std::vector<Vec3> out;
   for (std::uint32_t e : mesh_.cells[cell].edge) {
-    const auto s = mesh_.samples_of(mesh_.edges[e]);
-    out.insert(out.end(), s.begin(), s.end());
+    // Two edges of a cell meet at each corner, and both end in a sample there: where the two
+    // are the same point, it is taken once. A cell's map is the min over its samples and its far
+    // field the union over them (thesis 5.5), so a second copy adds nothing but a second map and
+    // sweep (an eighth of a cell's samples at the default edge length).
+    for (const Vec3& s : mesh_.samples_of(mesh_.edges[e]))
+      if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
   }
   return out;
 }

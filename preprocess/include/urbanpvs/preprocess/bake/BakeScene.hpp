@@ -66,7 +66,7 @@ class BakeScene {
   const std::vector<geometry::Ring>& object_outlines() const { return object_outlines_; }
   const BoxQuadtree& occluder_index() const { return occluder_index_; }
 
-  /// The samples of a cell: those of its three top edges (thesis 5.3).
+  /// The samples of a cell: those of its three top edges (thesis 5.3), each point once.
   std::vector<Vec3> samples(std::uint32_t cell) const;
   /// The one assembly of the output file, for bake_city and urbanpvs-preprocess alike: frame
   /// and settings of this scene, the objects in city order, cell i with `pvs[i]` (one per cell),
