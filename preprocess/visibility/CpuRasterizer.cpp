@@ -12,10 +12,12 @@ namespace urbanpvs::preprocess {
 // time, and AVX2 doubles its width. Without FMA (not part of the "avx2" target) every
 // operation rounds as in the baseline build, so both give bit-identical maps.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__gnu_linux__)
-__attribute__((target_clones("avx2", "default")))
+#define URBANPVS_ALSO_FOR_AVX2 __attribute__((target_clones("avx2", "default")))
+#else
+#define URBANPVS_ALSO_FOR_AVX2
 #endif
-std::size_t
-rasterize_max(const OccluderShadow& shadow, CullMap& map) {
+
+URBANPVS_ALSO_FOR_AVX2 std::size_t rasterize_max(const OccluderShadow& shadow, CullMap& map) {
   const CullMapGrid& g = map.grid();
   const ShadowPolygon& poly = shadow.polygon;
   double ymin = poly[0].y, ymax = poly[0].y;
