@@ -9,6 +9,8 @@
 #include <mutex>
 #include <thread>
 
+#include "urbanpvs/preprocess/bake/CellOrder.hpp"
+
 namespace urbanpvs::preprocess {
 namespace {
 
@@ -47,7 +49,9 @@ void bake_cells(const BakeScene& scene, std::span<const std::uint32_t> cells,
                 const std::function<void(CellOutcome&)>& finished,
                 const std::function<void(std::size_t)>& tick) {
   const unsigned threads = std::max(1u, options.threads);
-  ChunkQueue queue(cells.size(), threads, options.max_chunk);
+  // Neighbours one after another: each thread's FarField finds their shared samples kept.
+  const std::vector<std::uint32_t> order = along_hilbert_curve(scene.mesh(), cells);
+  ChunkQueue queue(order.size(), threads, options.max_chunk);
   std::atomic<std::size_t> done{0};
   std::atomic<bool> stop{false};
   std::mutex state_mutex;
@@ -62,7 +66,7 @@ void bake_cells(const BakeScene& scene, std::span<const std::uint32_t> cells,
       while (!stop.load(std::memory_order_relaxed) && queue.take(begin, end)) {
         for (std::size_t i = begin; i < end && !stop.load(std::memory_order_relaxed); ++i) {
           CellOutcome outcome;
-          outcome.cell = cells[i];
+          outcome.cell = order[i];
           outcome.pvs = visibility.pvs(outcome.cell, &outcome.counters);
           finished(outcome);
           done.fetch_add(1, std::memory_order_relaxed);

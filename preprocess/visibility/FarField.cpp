@@ -10,21 +10,125 @@
 
 namespace urbanpvs::preprocess {
 
-FarField::FarField(const BakeScene& scene)
+namespace {
+
+bool bit(const std::vector<std::uint64_t>& bits, std::uint32_t k) {
+  return (bits[k >> 6] >> (k & 63)) & 1u;
+}
+
+void set_bit(std::vector<std::uint64_t>& bits, std::uint32_t k) {
+  bits[k >> 6] |= std::uint64_t{1} << (k & 63);
+}
+
+// Wraps a stamp; clears the marks it stamps when it comes round to 0.
+void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uint32_t>*> marks) {
+  if (++stamp != 0) return;
+  for (auto* m : marks) std::fill(m->begin(), m->end(), 0u);
+  stamp = 1;
+}
+
+}  // namespace
+
+FarField::FarField(const BakeScene& scene, std::size_t kept_samples)
     : scene_(scene),
       far_visible_(scene.city().objects.size(), 0),
-      far_open_(scene.city().objects.size(), 0) {}
+      asked_(scene.city().objects.size(), 0),
+      seen_in_sweep_(scene.city().objects.size(), 0) {
+  const std::size_t words = (scene.city().objects.size() + 63) / 64;
+  const std::size_t bytes = std::max<std::size_t>(1, 2 * words * sizeof(std::uint64_t));
+  answers_.resize(std::min(kept_samples, kKeptBytes / bytes));
+  for (SampleAnswers& a : answers_) {
+    a.asked.assign(words, 0);
+    a.seen.assign(words, 0);
+  }
+}
+
+FarField::SampleAnswers* FarField::kept(const Vec3& sample) {
+  for (SampleAnswers& a : answers_)
+    if (a.last_used != 0 && a.sample == sample) {
+      a.last_used = calls_;
+      return &a;
+    }
+  return nullptr;
+}
+
+FarField::SampleAnswers* FarField::keep(const Vec3& sample) {
+  // The least recently read; never one this call reads (its pointer is in known_).
+  SampleAnswers* slot = nullptr;
+  for (SampleAnswers& a : answers_)
+    if (a.last_used != calls_ && (!slot || a.last_used < slot->last_used)) slot = &a;
+  if (!slot) return nullptr;
+  slot->sample = sample;
+  slot->last_used = calls_;
+  std::fill(slot->asked.begin(), slot->asked.end(), 0);
+  std::fill(slot->seen.begin(), slot->seen.end(), 0);
+  return slot;
+}
 
 std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
                                              std::span<const std::uint32_t> objects_open,
                                              CellCounters& c) {
-  // A fresh stamp marks this call's objects; the marks are only cleared when it wraps.
-  if (++stamp_ == 0) {
-    std::fill(far_open_.begin(), far_open_.end(), 0u);
-    std::fill(far_visible_.begin(), far_visible_.end(), 0u);
-    stamp_ = 1;
-  }
+  next_stamp(stamp_, {&far_visible_});
+  ++calls_;
   std::vector<std::uint32_t> found;
+  std::size_t open = objects_open.size();
+  c.objects_far_field += open;
+  // No occluder (every building may vanish when shrunk by ε, thesis 7.2): no wall casts a
+  // shadow (thesis 4.2.1), so nothing is hidden from any sample and every open object is
+  // visible; there is no quadtree root to start a sweep from. Likewise, should an object be
+  // open with no object tree or no sample to sweep from, nothing proves it hidden.
+  if (open > 0 && (scene_.occluder_index().nodes().empty() ||
+                   scene_.object_index().nodes().empty() || samples.empty())) {
+    return {objects_open.begin(), objects_open.end()};
+  }
+  auto mark_visible = [&](std::uint32_t o) {
+    if (far_visible_[o] == stamp_) return;
+    far_visible_[o] = stamp_;
+    found.push_back(o);
+    --open;
+  };
+  // What kept samples are known to see is visible from the cell: the union over samples.
+  known_.clear();
+  for (const Vec3& s : samples) known_.push_back(kept(s));
+  for (const SampleAnswers* a : known_)
+    if (a)
+      for (std::uint32_t o : objects_open)
+        if (bit(a->seen, o)) mark_visible(o);
+  // Each sample is asked what is still open and it has not answered yet; a sample that
+  // answered all of that needs no sweep.
+  // Samples with nothing kept first: they must be swept anyway, and what they see is then no
+  // longer asked of the kept ones, which often spares those a sweep.
+  order_.clear();
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (!known_[i]) order_.push_back(i);
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (known_[i]) order_.push_back(i);
+  for (std::size_t i : order_) {
+    if (open == 0) break;
+    SampleAnswers* a = known_[i];
+    ask_.clear();
+    for (std::uint32_t o : objects_open)
+      if (far_visible_[o] != stamp_ && !(a && bit(a->asked, o))) ask_.push_back(o);
+    if (ask_.empty()) {
+      ++c.sweeps_spared;
+      continue;
+    }
+    if (!a) a = known_[i] = keep(samples[i]);
+    seen_.clear();
+    sweep(samples[i], ask_, c, seen_);
+    if (a) {
+      for (std::uint32_t o : ask_) set_bit(a->asked, o);
+      for (std::uint32_t o : seen_) set_bit(a->seen, o);
+    }
+    for (std::uint32_t o : seen_) mark_visible(o);
+  }
+  return found;
+}
+
+void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask, CellCounters& c,
+                     std::vector<std::uint32_t>& seen) {
+  next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
+  ++c.sample_sweeps;
   // An object is met at its nearest distance; when its box is not hidden as a whole, again at
   // its farthest, when every wall in front of any of its pixel centres has been added.
   enum Kind : std::uint32_t { kNode, kOccluder, kObjectNode, kObject, kObjectCentres };
@@ -74,18 +178,16 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
     const double dy = std::max(h.sample().y - b.min.y, b.max.y - h.sample().y);
     return std::hypot(dx, dy);
   };
-  // Open objects per node of the object quadtree, so whole districts are tested at once.
+  // Asked objects per node of the object quadtree, so whole districts are tested at once.
   const BoxQuadtree& object_tree = scene_.object_index();
-  for (std::uint32_t o : objects_open) far_open_[o] = stamp_;
-  std::size_t open = objects_open.size();
-  c.objects_far_field += open;
+  for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
   const auto& nodes = object_tree.nodes();
   open_below_.assign(nodes.size(), 0);
   for (std::size_t id = nodes.size(); id-- > 0;) {  // children come after their parent
     const BoxQuadtree::Node& n = nodes[id];
     std::uint32_t count = 0;
     for (std::uint32_t k = 0; k < n.count; ++k)
-      count += far_open_[object_tree.items()[n.first + k]] == stamp_ ? 1 : 0;
+      count += asked_[object_tree.items()[n.first + k]] == sweep_stamp_ ? 1 : 0;
     for (std::int32_t child : n.child)
       if (child >= 0) count += open_below_[static_cast<std::size_t>(child)];
     open_below_[id] = count;
@@ -97,19 +199,11 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
     return b;
   };
   auto still_open = [&](std::uint32_t o) {
-    return far_open_[o] == stamp_ && far_visible_[o] != stamp_;
+    return asked_[o] == sweep_stamp_ && seen_in_sweep_[o] != sweep_stamp_;
   };
 
-  // No occluder (every building may vanish when shrunk by ε, thesis 7.2): no wall casts a
-  // shadow (thesis 4.2.1), so nothing is hidden from any sample and every open object is
-  // visible; there is no quadtree root to start a sweep from. Likewise, should an object be
-  // open with no object tree or no sample to sweep from, nothing proves it hidden.
-  if (open > 0 && (tree.nodes().empty() || nodes.empty() || samples.empty())) {
-    return {objects_open.begin(), objects_open.end()};
-  }
   std::vector<Event>& heap = events_;
-  for (const Vec3& sample : samples) {
-    if (open == 0) break;  // every open object is visible from some sample already
+  {
     SampleHorizon& h = horizon_;
     h.reset(sample);
     heap.clear();
@@ -142,7 +236,7 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
         h.add(scene_.occluders()[e.id]);
         ++c.occluders_far_field;
       } else if (e.kind == kObjectNode) {
-        if (open_below_[e.id] == 0 || h.hides(node_box(e.id))) continue;
+        if (open_below_[e.id] == 0 || h.hides_as_is(node_box(e.id))) continue;
         const BoxQuadtree::Node& n = nodes[e.id];
         for (std::uint32_t k = 0; k < n.count; ++k) {
           const std::uint32_t o = object_tree.items()[n.first + k];
@@ -154,15 +248,13 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
                  static_cast<std::uint32_t>(child));
       } else if (e.kind == kObject) {
         const geometry::Box3 b = centres_box(e.id);
-        if (!h.hides(b)) push(farthest(h, b.xy), kObjectCentres, e.id);
+        if (!h.hides_as_is(b)) push(farthest(h, b.xy), kObjectCentres, e.id);
       } else if (!points_hidden(h, e.id)) {
-        far_visible_[e.id] = stamp_;
-        found.push_back(e.id);
-        --open;
+        seen_in_sweep_[e.id] = sweep_stamp_;
+        seen.push_back(e.id);
       }
     }
   }
-  return found;
 }
 
 }  // namespace urbanpvs::preprocess

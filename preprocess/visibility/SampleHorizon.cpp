@@ -138,46 +138,67 @@ double entry_along(const geometry::Box2& box, Vec2 u) {
              : std::numeric_limits<double>::infinity();
 }
 
-bool SampleHorizon::hides(const geometry::Box3& box) {
-  const double d = distance_to(box.xy);
-  front_ = std::max(front_, d);
-  if (!(d > 0)) return false;
+SampleHorizon::BoxView SampleHorizon::view(const geometry::Box3& box) const {
+  BoxView v;
+  v.distance = distance_to(box.xy);
+  if (!(v.distance > 0)) return v;
   const Vec2 s{sample_.x, sample_.y};
-  const geometry::Box2 rel{box.xy.min - s, box.xy.max - s};  // the box seen from the sample
+  v.rel = {box.xy.min - s, box.xy.max - s};  // the box seen from the sample
+  const geometry::Box2& rel = v.rel;
   const std::array<Vec2, 4> corner{rel.min, Vec2{rel.max.x, rel.min.y}, rel.max,
                                    Vec2{rel.min.x, rel.max.y}};
   // The box does not contain the sample, so seen from it the box spans less than π around the
   // direction to its centre.
   const Vec2 c = 0.5 * (rel.min + rel.max);
   const double base = std::atan2(c.y, c.x);
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo, reach = 0;
-  for (Vec2 v : corner) {
-    const double a = std::atan2(geometry::cross(c, v), geometry::dot(c, v));
-    lo = std::min(lo, a);
-    hi = std::max(hi, a);
-    reach = std::max(reach, std::hypot(v.x, v.y));
+  v.lo = std::numeric_limits<double>::infinity();
+  v.hi = -v.lo;
+  for (Vec2 p : corner) {
+    const double a = std::atan2(geometry::cross(c, p), geometry::dot(c, p));
+    v.lo = std::min(v.lo, a);
+    v.hi = std::max(v.hi, a);
+    v.reach = std::max(v.reach, std::hypot(p.x, p.y));
   }
-  lo += base - kAngleSlack;
-  hi += base + kAngleSlack;
-  const auto first = static_cast<long long>(std::floor(lo / kSector));
-  const auto last = static_cast<long long>(std::floor(hi / kSector));
-  if (last - first + 1 >= kBins) return false;
+  v.lo += base - kAngleSlack;
+  v.hi += base + kAngleSlack;
+  v.first = static_cast<long long>(std::floor(v.lo / kSector));
+  v.last = static_cast<long long>(std::floor(v.hi / kSector));
+  v.rise = box.zmax - sample_.z;
+  return v;
+}
+
+bool SampleHorizon::hides(const geometry::Box3& box) {
+  const BoxView v = view(box);
+  front_ = std::max(front_, v.distance);
+  if (!(v.distance > 0) || v.last - v.first + 1 >= kBins) return false;
+  for (long long t = v.first; t <= v.last; ++t) settle(bin_of(t), v.distance);
+  return covers(v);
+}
+
+bool SampleHorizon::hides_as_is(const geometry::Box3& box) const {
+  const BoxView v = view(box);
+  if (!(v.distance > 0) || v.last - v.first + 1 >= kBins) return false;
+  return covers(v);
+}
+
+bool SampleHorizon::covers(const BoxView& v) const {
+  const double d = v.distance, reach = v.reach, rise = v.rise;
+  const geometry::Box2& rel = v.rel;
   // The nearest point of the whole box, and whether a sector's wedge holds it.
   const Vec2 nearest{std::clamp(0.0, rel.min.x, rel.max.x), std::clamp(0.0, rel.min.y, rel.max.y)};
-  const double rise = box.zmax - sample_.z;
-  for (long long t = first; t <= last; ++t) {
+  for (long long t = v.first; t <= v.last; ++t) {
     const int b = bin_of(t);
-    settle(b, d);
-    const Entry& settled = settled_[static_cast<std::size_t>(b)];
-    if (settled.reach <= d && (rise > 0 ? settled.slope * d > rise : settled.slope * reach > rise))
-      continue;  // hidden already
+    // The walls passed at the box's nearest distance (settled there by hides(), or still
+    // pending: slope_at counts both alike).
+    const double passed = slope_at(b, d);
+    if (rise > 0 ? passed * d > rise : passed * reach > rise) continue;  // hidden already
     // Else look closer: the nearest point of the box inside the sector's wedge is the box's
     // nearest point when the wedge holds it, else where one of the wedge's borders enters the
     // box; walls still pending up to that distance count too.
-    const double a0 = std::max(lo, static_cast<double>(t) * kSector);
-    const double a1 = std::min(hi, static_cast<double>(t + 1) * kSector);
-    const Vec2 u0 = t == first ? direction(a0) : border(t);
-    const Vec2 u1 = t == last ? direction(a1) : border(t + 1);
+    const double a0 = std::max(v.lo, static_cast<double>(t) * kSector);
+    const double a1 = std::min(v.hi, static_cast<double>(t + 1) * kSector);
+    const Vec2 u0 = t == v.first ? direction(a0) : border(t);
+    const Vec2 u1 = t == v.last ? direction(a1) : border(t + 1);
     double near = d;
     if (!(geometry::cross(u0, nearest) >= 0 && geometry::cross(nearest, u1) >= 0)) {
       near = std::min(entry_along(rel, u0), entry_along(rel, u1));

@@ -61,7 +61,7 @@ struct JournalContents {
   std::uint64_t dropped_bytes = 0;     ///< a torn or damaged tail after them
 };
 
-inline constexpr std::uint32_t kJournalVersion = 2;
+inline constexpr std::uint32_t kJournalVersion = 3;  // 3: the far field's sweep counters
 inline constexpr std::size_t kJournalHeaderSize = 40;
 
 std::vector<unsigned char> encode_journal_header(const JournalIdentity& identity);

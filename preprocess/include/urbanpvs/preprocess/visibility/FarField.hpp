@@ -20,13 +20,27 @@
 namespace urbanpvs::preprocess {
 
 /// Per-thread scratch state for the far field of one scene; the scene must outlive it.
+///
+/// What one sample decides for one object (seen or hidden) depends on the two alone: the sweep
+/// builds the horizon from the occluders in front-to-back order whichever objects are asked, and
+/// objects are asked without changing it (SampleHorizon::hides_as_is). A sample on a cell edge
+/// belongs to the two cells beside it, a corner sample to about six, and neighbouring cells leave
+/// nearly the same objects to the far field; so the answers of the last samples swept are kept
+/// and a cell asks a sample only what it has not answered yet. The PVS is the same whatever was
+/// kept, so it stays the same on any thread and in any order of the cells.
 class FarField {
  public:
-  explicit FarField(const BakeScene& scene);
+  /// Keeps the answers of up to `kept_samples` samples (0: none); fewer when one sample's
+  /// answers (two bits per object of the city) would make them take more than kKeptBytes.
+  explicit FarField(const BakeScene& scene, std::size_t kept_samples = kKeptSamples);
+
+  static constexpr std::size_t kKeptSamples = 256;
+  static constexpr std::size_t kKeptBytes = std::size_t{32} << 20;
 
   /// Of the `open` objects, those not proven hidden from every one of `samples`, in the order
   /// they were found visible. With no occluder, no object tree or no sample, every open object
-  /// (nothing proves one hidden). Counts objects_far_field, occluders_far_field, sight_lines.
+  /// (nothing proves one hidden). Counts objects_far_field, occluders_far_field, sight_lines,
+  /// sample_sweeps and sweeps_spared.
   std::vector<std::uint32_t> visible(std::span<const Vec3> samples,
                                      std::span<const std::uint32_t> open, CellCounters& counters);
 
@@ -35,13 +49,30 @@ class FarField {
     double distance;
     std::uint32_t kind, id;
   };
+  struct SampleAnswers {  ///< per object of the city: asked this sample, and if so seen from it
+    Vec3 sample{};
+    std::uint64_t last_used = 0;  ///< the visible() call that last read it (0: free)
+    std::vector<std::uint64_t> asked, seen;
+  };
+  /// The objects of `ask` that `sample` sees, in the order found; they are added to `seen`.
+  void sweep(const Vec3& sample, std::span<const std::uint32_t> ask, CellCounters& counters,
+             std::vector<std::uint32_t>& seen);
+  SampleAnswers* kept(const Vec3& sample);
+  /// A slot for `sample`'s answers, none read by this call; nullptr when every slot is.
+  SampleAnswers* keep(const Vec3& sample);
+
   const BakeScene& scene_;
   SampleHorizon horizon_;
   std::vector<Event> events_;
-  std::vector<std::uint32_t> open_below_;  ///< open objects per object-quadtree node
-  // Marks valid where they equal the current call's stamp (no clearing per call).
-  std::vector<std::uint32_t> far_visible_, far_open_;
-  std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> open_below_;  ///< asked objects per object-quadtree node
+  // Marks valid where they equal the current call's or sweep's stamp (no clearing per call).
+  std::vector<std::uint32_t> far_visible_, asked_, seen_in_sweep_;
+  std::uint32_t stamp_ = 0, sweep_stamp_ = 0;
+  std::vector<SampleAnswers> answers_;  ///< the kept samples
+  std::uint64_t calls_ = 0;
+  std::vector<SampleAnswers*> known_;  ///< per sample of the current call: its kept answers
+  std::vector<std::uint32_t> ask_, seen_;
+  std::vector<std::size_t> order_;
 };
 
 }  // namespace urbanpvs::preprocess

@@ -47,6 +47,12 @@ class SampleHorizon {
   /// every ray of its sector.
   bool hides(const geometry::Box3& box);
 
+  /// The answer hides() would give, without moving the sweep's front or settling a wall: the
+  /// horizon stays exactly what its wall queries and add() made it. The far field asks this of
+  /// objects, so that what a sample decides for an object depends on the sample and the object
+  /// alone, never on which other objects were asked before (FarField reuses it across cells).
+  bool hides_as_is(const geometry::Box3& box) const;
+
   /// True when the point `p` at height `top` is hidden by the walls added so far. For
   /// deciding objects the way a cull map does, by the pixel centres their box touches (thesis 7.2),
   /// where the box as a whole is not hidden.
@@ -62,6 +68,16 @@ class SampleHorizon {
     double slope;  ///< and everything below sample.z + slope·distance is hidden
   };
   static constexpr int kSlots = 8;
+  struct BoxView {                  ///< a box as the sample sees it
+    double distance = 0;            ///< to its nearest point (0: the sample is in it)
+    double reach = 0;               ///< to its farthest corner
+    double lo = 0, hi = 0;          ///< its directions (unwrapped, widened by the angle slack)
+    long long first = 0, last = 0;  ///< the sectors they touch
+    double rise = 0;                ///< of its top above the sample
+    geometry::Box2 rel;             ///< the box relative to the sample
+  };
+  BoxView view(const geometry::Box3& box) const;
+  bool covers(const BoxView& v) const;  ///< hides(), given the walls passed as they stand
 
   void add_ring(const geometry::Ring& ring, double top, bool hole);
   template <class Angle>

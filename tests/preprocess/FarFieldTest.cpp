@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The far field's kept answers per sample (issue 13) and the order the bake takes its cells in:
+// neither may change a PVS. The far field that keeps answers is compared with one that keeps
+// none, over cells taken in random order with random open sets (as the near maps would leave
+// them); the horizon's query that leaves the sweep as it is gives the answers of the one that
+// moves it; and the Hilbert order is a permutation that walks from neighbour to neighbour.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "urbanpvs/cities/CityGenerator.hpp"
+#include "urbanpvs/cities/CityJsonWriter.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/preprocess/bake/BakeScene.hpp"
+#include "urbanpvs/preprocess/bake/CellOrder.hpp"
+#include "urbanpvs/preprocess/visibility/FarField.hpp"
+
+namespace urbanpvs::preprocess {
+namespace {
+
+const BakeScene& scene() {
+  static const geometry::City city = [] {
+    cities::CityParams p;
+    p.size_km2 = 0.1;
+    p.seed = 9;
+    return geometry::read_city_text(cities::cityJsonText(cities::generateCity(p)), "gen.city.json");
+  }();
+  static const BakeScene s(city, BakeOptions{});
+  return s;
+}
+
+std::vector<std::uint32_t> sorted(std::vector<std::uint32_t> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// Every object, or at random (`mixed`) a random half: another cell's near maps decide others.
+std::vector<std::uint32_t> open_set(std::size_t objects, std::mt19937_64& rng, bool mixed = true) {
+  std::vector<std::uint32_t> open(objects);
+  std::iota(open.begin(), open.end(), 0u);
+  if (mixed && rng() % 3 != 0) {
+    std::shuffle(open.begin(), open.end(), rng);
+    open.resize(objects / 2);
+    std::sort(open.begin(), open.end());
+  }
+  return open;
+}
+
+TEST(FarField, KeptAnswersGiveTheSameObjectsInAnyOrderOfCells) {
+  const BakeScene& s = scene();
+  ASSERT_GT(s.cell_count(), 200u);
+  std::vector<std::uint32_t> cells(s.cell_count());
+  std::iota(cells.begin(), cells.end(), 0u);
+  std::mt19937_64 rng(3);
+  // Neighbours in turn with every object open (kept answers are read and spare sweeps), then
+  // at random with random open sets, each cell met twice.
+  constexpr std::size_t kNeighbours = 150;
+  std::vector<std::uint32_t> order = along_hilbert_curve(s.mesh(), cells);
+  order.resize(kNeighbours);
+  std::vector<std::uint32_t> random = order;
+  std::shuffle(random.begin(), random.end(), rng);
+  order.insert(order.end(), random.begin(), random.end());
+
+  FarField keeping(s), fresh(s, 0);
+  CellCounters kept_counts, fresh_counts;
+  std::size_t seen = 0, asked = 0, neighbour_sweeps = 0, neighbour_fresh_sweeps = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::uint32_t cell = order[k];
+    const std::vector<Vec3> samples = s.samples(cell);
+    const std::vector<std::uint32_t> open =
+        open_set(s.city().objects.size(), rng, k >= kNeighbours);
+    const std::vector<std::uint32_t> a = keeping.visible(samples, open, kept_counts);
+    const std::vector<std::uint32_t> b = fresh.visible(samples, open, fresh_counts);
+    const std::vector<std::uint32_t> sa = sorted(a);
+    ASSERT_EQ(sa, sorted(b)) << "cell " << cell;
+    ASSERT_TRUE(std::includes(open.begin(), open.end(), sa.begin(), sa.end()));
+    seen += a.size();
+    asked += open.size();
+    if (k + 1 == kNeighbours) {
+      neighbour_sweeps = kept_counts.sample_sweeps;
+      neighbour_fresh_sweeps = fresh_counts.sample_sweeps;
+    }
+  }
+  // Not vacuous: the far field hides some and shows some, and the kept answers spared sweeps.
+  EXPECT_GT(seen, asked / 50);
+  EXPECT_LT(seen, asked);
+  EXPECT_EQ(fresh_counts.sweeps_spared, 0u);
+  EXPECT_GT(kept_counts.sweeps_spared, 0u);
+  EXPECT_LT(neighbour_sweeps, neighbour_fresh_sweeps * 3 / 4);
+  EXPECT_EQ(kept_counts.sample_sweeps + kept_counts.sweeps_spared, fresh_counts.sample_sweeps);
+}
+
+TEST(FarField, FewKeptSamplesStillGiveTheSameObjects) {
+  // Two slots for cells of about twenty samples: a cell reads more kept samples than there are
+  // slots, and a slot it reads must never be handed to another of its samples.
+  const BakeScene& s = scene();
+  FarField two(s, 2), fresh(s, 0);
+  CellCounters counts;
+  std::mt19937_64 rng(8);
+  for (std::uint32_t cell = 0; cell < 60; ++cell) {
+    const std::vector<Vec3> samples = s.samples(cell);
+    const std::vector<std::uint32_t> open = open_set(s.city().objects.size(), rng);
+    ASSERT_EQ(sorted(two.visible(samples, open, counts)),
+              sorted(fresh.visible(samples, open, counts)))
+        << "cell " << cell;
+  }
+}
+
+TEST(SampleHorizon, AskingAsIsGivesTheSweepsAnswerAndChangesNoLaterOne) {
+  const BakeScene& s = scene();
+  const std::vector<Vec3> samples = s.samples(s.cell_count() / 2);
+  const auto& objects = s.city().objects;
+  std::size_t hidden = 0;
+  for (const Vec3& sample : samples) {
+    // Every occluder added, then every object asked in order of distance: one horizon by
+    // hides() (settling walls as the front moves), one by hides_as_is() on every other object.
+    SampleHorizon moving, still;
+    moving.reset(sample);
+    still.reset(sample);
+    for (const geometry::Occluder& o : s.occluders()) {
+      moving.add(o);
+      still.add(o);
+    }
+    std::vector<std::uint32_t> by_distance(objects.size());
+    std::iota(by_distance.begin(), by_distance.end(), 0u);
+    std::stable_sort(by_distance.begin(), by_distance.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return moving.distance_to(objects[a].bbox.xy) < moving.distance_to(objects[b].bbox.xy);
+    });
+    for (std::size_t k = 0; k < by_distance.size(); ++k) {
+      const geometry::Box3& box = objects[by_distance[k]].bbox;
+      const bool as_is = still.hides_as_is(box);
+      const bool swept = moving.hides(box);
+      ASSERT_EQ(as_is, swept) << "object " << by_distance[k];
+      if (k % 2 == 0) {  // the still one moves now and then
+        ASSERT_EQ(still.hides(box), swept);
+      }
+      hidden += swept ? 1 : 0;
+    }
+  }
+  EXPECT_GT(hidden, 0u);
+}
+
+TEST(CellOrder, AlongTheHilbertCurveIsAPermutationThatStepsToNeighbours) {
+  const geometry::ViewCellMesh& mesh = scene().mesh();
+  std::vector<std::uint32_t> cells(mesh.cells.size());
+  std::iota(cells.begin(), cells.end(), 0u);
+  const std::vector<std::uint32_t> order = along_hilbert_curve(mesh, cells);
+  EXPECT_EQ(sorted(order), cells);
+  EXPECT_EQ(along_hilbert_curve(mesh, cells), order);  // deterministic
+
+  auto mean_step = [&](const std::vector<std::uint32_t>& o) {
+    double sum = 0;
+    for (std::size_t k = 1; k < o.size(); ++k) {
+      const auto& a = mesh.cells[o[k - 1]].corner;
+      const auto& b = mesh.cells[o[k]].corner;
+      sum += glm::length((a[0] + a[1] + a[2]) / 3.0 - (b[0] + b[1] + b[2]) / 3.0);
+    }
+    return sum / double(o.size() - 1);
+  };
+  std::vector<std::uint32_t> shuffled = cells;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937_64(1));
+  const double hilbert = mean_step(order);
+  EXPECT_LT(hilbert, mean_step(shuffled) / 10);
+  EXPECT_LE(hilbert, mean_step(cells));
+  EXPECT_LT(hilbert, 2 * mesh.options.max_cell_edge);
+
+  // A subset (the cells of one bake part) keeps its own cells only.
+  const std::vector<std::uint32_t> part(cells.begin() + 10, cells.begin() + 40);
+  EXPECT_EQ(sorted(along_hilbert_curve(mesh, part)), part);
+}
+
+}  // namespace
+}  // namespace urbanpvs::preprocess
