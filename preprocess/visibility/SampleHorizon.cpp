@@ -64,6 +64,10 @@ void SampleHorizon::reset(const Vec3& sample) {
 double SampleHorizon::distance_to(const geometry::Box2& box) const {
   const double dx = std::max({0.0, box.min.x - sample_.x, sample_.x - box.max.x});
   const double dy = std::max({0.0, box.min.y - sample_.y, sample_.y - box.max.y});
+  // The sample often lies within the box's x or y range (large quadtree nodes always nearly):
+  // then hypot's answer is exactly the other distance, found without calling it.
+  if (dx == 0) return dy;
+  if (dy == 0) return dx;
   return std::hypot(dx, dy);
 }
 
