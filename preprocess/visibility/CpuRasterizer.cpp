@@ -6,17 +6,12 @@
 #include <cmath>
 #include <cstdint>
 
+#include "urbanpvs/preprocess/visibility/AlsoForAvx2.hpp"
+
 namespace urbanpvs::preprocess {
 
-// Two builds of the same code, chosen at load time: the row loop below is most of a bake's map
-// time, and AVX2 doubles its width. Without FMA (not part of the "avx2" target) every
-// operation rounds as in the baseline build, so both give bit-identical maps.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__gnu_linux__)
-#define URBANPVS_ALSO_FOR_AVX2 __attribute__((target_clones("avx2", "default")))
-#else
-#define URBANPVS_ALSO_FOR_AVX2
-#endif
-
+// Two builds of the same code (AlsoForAvx2.hpp): the row loop below is most of a bake's map
+// time, and AVX2 doubles its width; both give bit-identical maps.
 URBANPVS_ALSO_FOR_AVX2 std::size_t rasterize_max(const OccluderShadow& shadow, CullMap& map) {
   const CullMapGrid& g = map.grid();
   const ShadowPolygon& poly = shadow.polygon;

@@ -41,6 +41,60 @@ FarField::FarField(const BakeScene& scene, std::size_t kept_samples)
     a.asked.assign(words, 0);
     a.seen.assign(words, 0);
   }
+  const BoxQuadtree& tree = scene.object_index();
+  const auto& nodes = tree.nodes();
+  parent_.assign(nodes.size(), -1);
+  node_of_.assign(scene.city().objects.size(), -1);
+  std::vector<std::uint32_t> depth(nodes.size(), 1);
+  for (std::size_t id = 0; id < nodes.size(); ++id) {  // children come after their parent
+    const BoxQuadtree::Node& n = nodes[id];
+    for (std::uint32_t k = 0; k < n.count; ++k)
+      node_of_[tree.items()[n.first + k]] = static_cast<std::int32_t>(id);
+    for (std::int32_t child : n.child)
+      if (child >= 0) {
+        parent_[static_cast<std::size_t>(child)] = static_cast<std::int32_t>(id);
+        depth[static_cast<std::size_t>(child)] = depth[id] + 1;
+      }
+    depth_ = std::max(depth_, depth[id]);
+  }
+}
+
+void FarField::count_asked(std::span<const std::uint32_t> ask,
+                           std::span<const std::uint32_t> not_asked) {
+  const BoxQuadtree& tree = scene_.object_index();
+  const auto& nodes = tree.nodes();
+  // Counted afresh: every node and item once.
+  auto count = [&](std::vector<std::uint32_t>& out) {
+    out.assign(nodes.size(), 0);
+    for (std::size_t id = nodes.size(); id-- > 0;) {  // children come after their parent
+      const BoxQuadtree::Node& n = nodes[id];
+      std::uint32_t c = 0;
+      for (std::uint32_t k = 0; k < n.count; ++k)
+        c += asked_[tree.items()[n.first + k]] == sweep_stamp_ ? 1 : 0;
+      for (std::int32_t child : n.child)
+        if (child >= 0) c += out[static_cast<std::size_t>(child)];
+      out[id] = c;
+    }
+  };
+  if (not_asked.size() * depth_ >= nodes.size() + tree.items().size()) {
+    next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
+    for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
+    count(open_below_);
+    return;
+  }
+  if (call_counted_ != calls_) {  // the open objects are `ask` and `not_asked` together
+    next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
+    for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
+    for (std::uint32_t o : not_asked) asked_[o] = sweep_stamp_;
+    count(open_in_call_);
+    call_counted_ = calls_;
+  }
+  open_below_ = open_in_call_;
+  for (std::uint32_t o : not_asked)
+    for (std::int32_t id = node_of_[o]; id >= 0; id = parent_[static_cast<std::size_t>(id)])
+      --open_below_[static_cast<std::size_t>(id)];
+  next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
+  for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
 }
 
 FarField::SampleAnswers* FarField::kept(const Vec3& sample) {
@@ -107,15 +161,16 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
     if (open == 0) break;
     SampleAnswers* a = known_[i];
     ask_.clear();
+    not_asked_.clear();
     for (std::uint32_t o : objects_open)
-      if (far_visible_[o] != stamp_ && !(a && bit(a->asked, o))) ask_.push_back(o);
+      (far_visible_[o] != stamp_ && !(a && bit(a->asked, o)) ? ask_ : not_asked_).push_back(o);
     if (ask_.empty()) {
       ++c.sweeps_spared;
       continue;
     }
     if (!a) a = known_[i] = keep(samples[i]);
     seen_.clear();
-    sweep(samples[i], ask_, c, seen_);
+    sweep(samples[i], ask_, not_asked_, c, seen_);
     if (a) {
       for (std::uint32_t o : ask_) set_bit(a->asked, o);
       for (std::uint32_t o : seen_) set_bit(a->seen, o);
@@ -125,9 +180,10 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
   return found;
 }
 
-void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask, CellCounters& c,
+void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
+                     std::span<const std::uint32_t> not_asked, CellCounters& c,
                      std::vector<std::uint32_t>& seen) {
-  next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
+  count_asked(ask, not_asked);
   ++c.sample_sweeps;
   // An object is met at its nearest distance; when its box is not hidden as a whole, again at
   // its farthest, when every wall in front of any of its pixel centres has been added.
@@ -180,18 +236,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask, Cel
   };
   // Asked objects per node of the object quadtree, so whole districts are tested at once.
   const BoxQuadtree& object_tree = scene_.object_index();
-  for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
   const auto& nodes = object_tree.nodes();
-  open_below_.assign(nodes.size(), 0);
-  for (std::size_t id = nodes.size(); id-- > 0;) {  // children come after their parent
-    const BoxQuadtree::Node& n = nodes[id];
-    std::uint32_t count = 0;
-    for (std::uint32_t k = 0; k < n.count; ++k)
-      count += asked_[object_tree.items()[n.first + k]] == sweep_stamp_ ? 1 : 0;
-    for (std::int32_t child : n.child)
-      if (child >= 0) count += open_below_[static_cast<std::size_t>(child)];
-    open_below_[id] = count;
-  }
   // A node's box holds its objects' boxes; grown by half a pixel it holds their centre boxes.
   auto node_box = [&](std::uint32_t id) {
     geometry::Box3 b = nodes[id].box;

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "urbanpvs/preprocess/visibility/AlsoForAvx2.hpp"
+
 namespace urbanpvs::preprocess {
 namespace {
 
@@ -31,6 +33,20 @@ const std::array<Vec2, SampleHorizon::kBins> kBorders = [] {
   std::array<Vec2, SampleHorizon::kBins> t;
   for (int k = 0; k < SampleHorizon::kBins; ++k)
     t[static_cast<std::size_t>(k)] = direction(k * kSector);
+  return t;
+}();
+
+// The same directions as two arrays, twice round, so that the borders a wall crosses (less than
+// half a turn) lie in one run.
+struct BorderTable {
+  alignas(32) std::array<double, 2 * SampleHorizon::kBins> x, y;
+};
+const BorderTable kBorderTable = [] {
+  BorderTable t;
+  for (std::size_t k = 0; k < t.x.size(); ++k) {
+    t.x[k] = kBorders[k % SampleHorizon::kBins].x;
+    t.y[k] = kBorders[k % SampleHorizon::kBins].y;
+  }
   return t;
 }();
 
@@ -133,6 +149,15 @@ void SampleHorizon::insert(int bin, Entry e) {
   last->slope = std::max(last->slope, e.slope);
 }
 
+// The distances along borders first .. first + n - 1 (bins, first + n <= 2·kBins) at which
+// they cross the line of a wall: num / cross(border, e), as close_sectors computes one, for a
+// whole run of sectors at once (the divisions were most of a sweep's wall cost).
+URBANPVS_ALSO_FOR_AVX2 void border_crossings(double num, Vec2 e, int first, int n, double* out) {
+  const double* x = kBorderTable.x.data() + first;
+  const double* y = kBorderTable.y.data() + first;
+  for (int k = 0; k < n; ++k) out[k] = num / (x[k] * e.y - y[k] * e.x);
+}
+
 // Where the ray from the origin along `u` enters `box` (relative to the origin), or infinity.
 double entry_along(const geometry::Box2& box, Vec2 u) {
   double t0, t1;
@@ -149,20 +174,45 @@ SampleHorizon::BoxView SampleHorizon::view(const geometry::Box3& box) const {
   const Vec2 s{sample_.x, sample_.y};
   v.rel = {box.xy.min - s, box.xy.max - s};  // the box seen from the sample
   const geometry::Box2& rel = v.rel;
-  const std::array<Vec2, 4> corner{rel.min, Vec2{rel.max.x, rel.min.y}, rel.max,
-                                   Vec2{rel.min.x, rel.max.y}};
   // The box does not contain the sample, so seen from it the box spans less than π around the
   // direction to its centre.
   const Vec2 c = 0.5 * (rel.min + rel.max);
   const double base = std::atan2(c.y, c.x);
   v.lo = std::numeric_limits<double>::infinity();
   v.hi = -v.lo;
-  for (Vec2 p : corner) {
+  auto bound = [&](Vec2 p) {
     const double a = std::atan2(geometry::cross(c, p), geometry::dot(c, p));
     v.lo = std::min(v.lo, a);
     v.hi = std::max(v.hi, a);
-    v.reach = std::max(v.reach, std::hypot(p.x, p.y));
+  };
+  // Only silhouette corners bound the directions; the others lie strictly between them, so
+  // their angles (two of the five atan2 calls per box) are not needed. Seen from outside both
+  // of the box's ranges the silhouette is the two corners that pair the near x with the far y
+  // and the far x with the near y; from within its y range (x range) it is the near column
+  // (row), and a far corner on the sample's own line (coordinate exactly 0) ties with a near
+  // one, so it is bounded too: the same angles as over all four corners.
+  const bool x_apart = rel.min.x > 0 || rel.max.x < 0;
+  const bool y_apart = rel.min.y > 0 || rel.max.y < 0;
+  const double near_x = rel.min.x > 0 ? rel.min.x : rel.max.x;
+  const double far_x = rel.min.x > 0 ? rel.max.x : rel.min.x;
+  const double near_y = rel.min.y > 0 ? rel.min.y : rel.max.y;
+  const double far_y = rel.min.y > 0 ? rel.max.y : rel.min.y;
+  if (x_apart && y_apart) {
+    bound({near_x, far_y});
+    bound({far_x, near_y});
+  } else if (x_apart) {
+    bound({near_x, rel.min.y});
+    bound({near_x, rel.max.y});
+    if (rel.min.y == 0) bound({far_x, rel.min.y});
+    if (rel.max.y == 0) bound({far_x, rel.max.y});
+  } else {
+    bound({rel.min.x, near_y});
+    bound({rel.max.x, near_y});
+    if (rel.min.x == 0) bound({rel.min.x, far_y});
+    if (rel.max.x == 0) bound({rel.max.x, far_y});
   }
+  // The farthest corner pairs the larger |x| with the larger |y|.
+  v.reach = std::hypot(std::max(-rel.min.x, rel.max.x), std::max(-rel.min.y, rel.max.y));
   v.lo += base - kAngleSlack;
   v.hi += base + kAngleSlack;
   v.first = static_cast<long long>(std::floor(v.lo / kSector));
@@ -261,9 +311,20 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     // Sector t spans [from, to] of this wall; `to` of one sector is `from` of the next.
     double at_from = along(static_cast<double>(u0) * kSector < a_lo ? direction(a_lo) : border(u0));
     auto b = static_cast<std::size_t>(bin_of(u0));
+    // The borders u0 + 1 .. u1 + 1, all at once.
+    const int first = bin_of(u0 + 1);
+    const auto n_borders = static_cast<int>(u1 - u0 + 1);
+    crossing_.resize(static_cast<std::size_t>(n_borders));
+    if (first + n_borders <= 2 * kBins) {
+      border_crossings(num, e, first, n_borders, crossing_.data());
+    } else {  // a wall faces the sample over less than half a turn: never
+      for (int i = 0; i < n_borders; ++i)
+        crossing_[static_cast<std::size_t>(i)] = along(border(u0 + 1 + i));
+    }
     for (long long t = u0; t <= u1; ++t) {
-      const double at_to =
-          along(static_cast<double>(t + 1) * kSector > a_hi ? direction(a_hi) : border(t + 1));
+      const double at_to = static_cast<double>(t + 1) * kSector > a_hi
+                               ? along(direction(a_hi))
+                               : crossing_[static_cast<std::size_t>(t - u0)];
       if (sector_mark_[b] != skip_mark) {
         if (reach_[b] == 0) touched_.push_back(static_cast<int>(b));
         reach_[b] = std::max({reach_[b], at_from, at_to, 1e-300});

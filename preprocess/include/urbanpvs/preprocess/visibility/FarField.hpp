@@ -55,8 +55,13 @@ class FarField {
     std::vector<std::uint64_t> asked, seen;
   };
   /// The objects of `ask` that `sample` sees, in the order found; they are added to `seen`.
-  void sweep(const Vec3& sample, std::span<const std::uint32_t> ask, CellCounters& counters,
+  /// `ask` is this call's open objects less `not_asked`.
+  void sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
+             std::span<const std::uint32_t> not_asked, CellCounters& counters,
              std::vector<std::uint32_t>& seen);
+  /// open_below_ for `ask`: this call's counts of open objects (made by the first sweep) less
+  /// `not_asked` along their paths to the root, or counted afresh where that is cheaper.
+  void count_asked(std::span<const std::uint32_t> ask, std::span<const std::uint32_t> not_asked);
   SampleAnswers* kept(const Vec3& sample);
   /// A slot for `sample`'s answers, none read by this call; nullptr when every slot is.
   SampleAnswers* keep(const Vec3& sample);
@@ -64,14 +69,19 @@ class FarField {
   const BakeScene& scene_;
   SampleHorizon horizon_;
   std::vector<Event> events_;
-  std::vector<std::uint32_t> open_below_;  ///< asked objects per object-quadtree node
+  std::vector<std::uint32_t> open_below_;    ///< asked objects per object-quadtree node
+  std::vector<std::uint32_t> open_in_call_;  ///< open objects per node (valid: call_counted_)
+  std::uint64_t call_counted_ = 0;           ///< the visible() call open_in_call_ is for
+  std::vector<std::int32_t> parent_;         ///< per object-quadtree node (-1: the root)
+  std::vector<std::int32_t> node_of_;        ///< per object: the node holding it (-1: none)
+  std::uint32_t depth_ = 0;                  ///< of the object quadtree
   // Marks valid where they equal the current call's or sweep's stamp (no clearing per call).
   std::vector<std::uint32_t> far_visible_, asked_, seen_in_sweep_;
   std::uint32_t stamp_ = 0, sweep_stamp_ = 0;
   std::vector<SampleAnswers> answers_;  ///< the kept samples
   std::uint64_t calls_ = 0;
   std::vector<SampleAnswers*> known_;  ///< per sample of the current call: its kept answers
-  std::vector<std::uint32_t> ask_, seen_;
+  std::vector<std::uint32_t> ask_, not_asked_, seen_;
   std::vector<std::size_t> order_;
 };
 
