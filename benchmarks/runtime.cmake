@@ -4,6 +4,7 @@
 add_executable(runtime_benchmark
   ${CMAKE_CURRENT_LIST_DIR}/runtime_benchmark.cpp
   ${CMAKE_CURRENT_LIST_DIR}/RuntimeFileTable.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/MemoryLatency.cpp
   ${PROJECT_SOURCE_DIR}/tests/runtime/support/SyntheticCity.cpp)
 target_include_directories(runtime_benchmark PRIVATE ${PROJECT_SOURCE_DIR}/tests/runtime/support)
 target_link_libraries(runtime_benchmark PRIVATE urbanpvs_runtime benchmark::benchmark urbanpvs_warnings)

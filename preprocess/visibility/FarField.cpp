@@ -76,16 +76,19 @@ void FarField::count_asked(std::span<const std::uint32_t> ask,
       out[id] = c;
     }
   };
-  if (not_asked.size() * depth_ >= nodes.size() + tree.items().size()) {
+  // A new sweep: `ask` (and `also`) are the objects asked in it, nothing is seen yet.
+  auto begin_sweep = [&](std::span<const std::uint32_t> also) {
     next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
     for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
+    for (std::uint32_t o : also) asked_[o] = sweep_stamp_;
+  };
+  if (not_asked.size() * depth_ >= nodes.size() + tree.items().size()) {
+    begin_sweep({});
     count(open_below_);
     return;
   }
   if (call_counted_ != calls_) {  // the open objects are `ask` and `not_asked` together
-    next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
-    for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
-    for (std::uint32_t o : not_asked) asked_[o] = sweep_stamp_;
+    begin_sweep(not_asked);
     count(open_in_call_);
     call_counted_ = calls_;
   }
@@ -93,8 +96,7 @@ void FarField::count_asked(std::span<const std::uint32_t> ask,
   for (std::uint32_t o : not_asked)
     for (std::int32_t id = node_of_[o]; id >= 0; id = parent_[static_cast<std::size_t>(id)])
       --open_below_[static_cast<std::size_t>(id)];
-  next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
-  for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
+  begin_sweep({});
 }
 
 FarField::SampleAnswers* FarField::kept(const Vec3& sample) {

@@ -28,31 +28,25 @@ Vec2 direction(double a) {
   return {std::cos(a), std::sin(a)};
 }
 
-// The directions of the sector borders, computed once.
-const std::array<Vec2, SampleHorizon::kBins> kBorders = [] {
-  std::array<Vec2, SampleHorizon::kBins> t;
-  for (int k = 0; k < SampleHorizon::kBins; ++k)
-    t[static_cast<std::size_t>(k)] = direction(k * kSector);
-  return t;
-}();
-
-// The same directions as two arrays, twice round, so that the borders a wall crosses (less than
-// half a turn) lie in one run.
+// The directions of the sector borders, computed once, as two arrays twice round: the borders
+// a wall crosses (less than half a turn) then lie in one run (border_crossings).
 struct BorderTable {
   alignas(32) std::array<double, 2 * SampleHorizon::kBins> x, y;
 };
 const BorderTable kBorderTable = [] {
   BorderTable t;
   for (std::size_t k = 0; k < t.x.size(); ++k) {
-    t.x[k] = kBorders[k % SampleHorizon::kBins].x;
-    t.y[k] = kBorders[k % SampleHorizon::kBins].y;
+    const Vec2 d = direction(static_cast<double>(k % SampleHorizon::kBins) * kSector);
+    t.x[k] = d.x;
+    t.y[k] = d.y;
   }
   return t;
 }();
 
 // Direction of the border where sector t begins.
 Vec2 border(long long t) {
-  return kBorders[static_cast<std::size_t>(bin_of(t))];
+  const auto k = static_cast<std::size_t>(bin_of(t));
+  return {kBorderTable.x[k], kBorderTable.y[k]};
 }
 
 double wrap_pi(double a) {

@@ -419,6 +419,19 @@ std::uint64_t cell_start(const PvsSection& section, std::uint32_t cell) noexcept
   return std::uint64_t{load_u32(block)} + (i == 0 ? 0 : load_u16(block + 2 + 2 * i));
 }
 
+void prefetch_pvs_start(const PvsSection& section, std::uint32_t cell) noexcept {
+  if (!section.coded) {
+    URBANPVS_PREFETCH(section.offsets + 4 * std::size_t{cell});
+    return;
+  }
+  const std::uint32_t shift = section.block_shift;
+  const std::size_t record = 4 + 2 * ((std::size_t{1} << shift) - 1);
+  const unsigned char* block = section.offsets + (std::size_t{cell} >> shift) * record;
+  const std::uint32_t i = cell & ((1u << shift) - 1);
+  URBANPVS_PREFETCH(block);
+  if (i != 0) URBANPVS_PREFETCH(block + 2 + 2 * i);  // a block may straddle two lines
+}
+
 bool payload_range(const PvsSection& section, std::uint32_t cell, std::uint32_t& begin,
                    std::uint32_t& end) noexcept {
   if (cell >= section.cell_count) return false;

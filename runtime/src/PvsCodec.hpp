@@ -52,6 +52,9 @@ std::uint64_t block_index_size(std::uint32_t cells, std::uint32_t shift) noexcep
 /// against the payload size.
 std::uint64_t cell_start(const PvsSection& section, std::uint32_t cell) noexcept;
 
+/// Starts loading the index entry that cell_start(section, cell) reads (cell < cell_count).
+void prefetch_pvs_start(const PvsSection& section, std::uint32_t cell) noexcept;
+
 /// The byte range of `cell`'s payload; false when the cell or the index is out of range.
 bool payload_range(const PvsSection& section, std::uint32_t cell, std::uint32_t& begin,
                    std::uint32_t& end) noexcept;

@@ -29,7 +29,16 @@ std::uint32_t locate_in(const detail::PvsFileData& f, double x, double y, double
   const std::uint32_t* const end = f.grid.entries.data() + f.grid.offsets[grid_cell + 1];
   // The candidates are scattered over the cell table: ask for all of them at once, so their
   // cache misses overlap instead of following one another (random queries are memory bound).
-  for (const std::uint32_t* p = e; p != end; ++p) URBANPVS_PREFETCH(&f.cells.shapes[*p]);
+  // Where each one's PVS starts is asked for too: the decode that usually follows needs it
+  // first, and would otherwise wait one more miss after the shape tests.
+  for (const std::uint32_t* p = e; p != end; ++p) {
+    URBANPVS_PREFETCH(&f.cells.shapes[*p]);
+    if (f.expanded.empty()) {
+      detail::prefetch_pvs_start(f.pvs.section, *p);
+    } else {
+      URBANPVS_PREFETCH(&f.expanded.offsets[*p]);
+    }
+  }
   for (; e != end; ++e) {
     const detail::CellShape& shape = f.cells.shapes[*e];
     if (check_z && !(z >= shape.z_min && z <= shape.z_max)) continue;
