@@ -98,6 +98,12 @@ std::ifstream open_input_file(const std::string& path) {
   return in;
 }
 
+std::string json_error_text(const nlohmann::json::exception& e) {
+  std::string what = e.what();
+  if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+  return what;
+}
+
 std::string read_input_file(const std::string& path) {
   std::ifstream in = open_input_file(path);
   std::ostringstream s;
@@ -115,19 +121,17 @@ using detail::Json;
 enum class Format { CityJson, GeoJson };
 
 Json parse(std::string_view text, const std::string& name) {
+  if (std::optional<Json> joined = detail::join_cityjson_sequence(text, name))
+    return std::move(*joined);
   try {
     return Json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
-    // e.what() carries "line L, column C" and the byte offset; keep only the readable part.
-    std::string what = e.what();
-    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    // e.what() carries "line L, column C"; the byte offset is added.
     throw InputError(InputProblem::InvalidJson, name, "",
-                     what + " (byte " + std::to_string(e.byte) + ")");
+                     detail::json_error_text(e) + " (byte " + std::to_string(e.byte) + ")");
   } catch (const nlohmann::json::exception& e) {
     // e.g. out_of_range.406: a number too large for a double (1e400).
-    std::string what = e.what();
-    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    throw InputError(InputProblem::InvalidJson, name, "", what);
+    throw InputError(InputProblem::InvalidJson, name, "", detail::json_error_text(e));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "urbanpvs/geometry/city/CityReader.hpp"
@@ -34,6 +35,14 @@ std::ifstream open_input_file(const std::string& path);
 
 std::string normalise_crs(const std::string& name, const std::string& file);
 bool is_geographic_crs(const std::string& normalised);
+
+/// The readable part of a JSON parser's message ("parse error at line L, column C: ...").
+std::string json_error_text(const nlohmann::json::exception& e);
+
+/// A CityJSON text sequence (a CityJSON header line, then one CityJSONFeature per line) joined
+/// into one CityJSON document (CityJsonSequence.cpp); nullopt when `text` is not one. Throws
+/// InputError naming the line of a feature that is no JSON or no CityJSONFeature.
+std::optional<Json> join_cityjson_sequence(std::string_view text, const std::string& file);
 
 InputScan scan_cityjson(const Json& doc, const std::string& file);
 void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
