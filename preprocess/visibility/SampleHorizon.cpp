@@ -297,13 +297,18 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     const Vec2 e = q - p;
     const double num = geometry::cross(p - s, e);
     auto along = [&](Vec2 u) { return num / geometry::cross(u, e); };
-    const double a_lo = std::min(angle(k), angle(k + 1));
-    const double a_hi = std::max(angle(k), angle(k + 1));
+    // The wall's ends: where the rays towards them cross it is the ends themselves, so their
+    // distances need no direction (cos, sin) and no division.
+    const bool p_first = angle(k) <= angle(k + 1);
+    const double a_lo = p_first ? angle(k) : angle(k + 1);
+    const double a_hi = p_first ? angle(k + 1) : angle(k);
+    const double at_lo = vertex_distance_[(p_first ? k : k + 1) % n];
+    const double at_hi = vertex_distance_[(p_first ? k + 1 : k) % n];
     const auto u0 = std::max(t0, static_cast<long long>(std::floor(a_lo / kSector)));
     const auto u1 = std::min(t1, static_cast<long long>(std::floor(a_hi / kSector)));
     if (u1 < u0) continue;
     // Sector t spans [from, to] of this wall; `to` of one sector is `from` of the next.
-    double at_from = along(static_cast<double>(u0) * kSector < a_lo ? direction(a_lo) : border(u0));
+    double at_from = static_cast<double>(u0) * kSector < a_lo ? at_lo : along(border(u0));
     auto b = static_cast<std::size_t>(bin_of(u0));
     // The borders u0 + 1 .. u1 + 1, all at once.
     const int first = bin_of(u0 + 1);
@@ -317,7 +322,7 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     }
     for (long long t = u0; t <= u1; ++t) {
       const double at_to = static_cast<double>(t + 1) * kSector > a_hi
-                               ? along(direction(a_hi))
+                               ? at_hi
                                : crossing_[static_cast<std::size_t>(t - u0)];
       if (sector_mark_[b] != skip_mark) {
         if (reach_[b] == 0) touched_.push_back(static_cast<int>(b));
@@ -329,7 +334,8 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
   }
   const double rise = top - sample_.z;
   for (int b : touched_) {
-    // Slightly farther than computed: the cos/sin and division above are a few ulps off.
+    // Slightly farther than computed: the divisions and square roots above are a few ulps
+    // off.
     const double r = reach_[static_cast<std::size_t>(b)] * (1 + 1e-9) + 1e-9;
     reach_[static_cast<std::size_t>(b)] = 0;
     sector_mark_[static_cast<std::size_t>(b)] = mark;
@@ -376,11 +382,13 @@ void SampleHorizon::add_ring(const geometry::Ring& ring, double top, bool hole) 
   const Vec2 s{sample_.x, sample_.y};
   // Vertex directions, unwrapped along the ring: angle_[k] for vertex k, angle_[n] = back at 0.
   angle_.resize(n + 1);
+  vertex_distance_.resize(n);
   const Vec2 v0 = ring[0] - s;
   angle_[0] = std::atan2(v0.y, v0.x);
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 a = ring[k] - s, b = ring[(k + 1) % n] - s;
     angle_[k + 1] = angle_[k] + wrap_pi(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
+    vertex_distance_[k] = std::sqrt(a.x * a.x + a.y * a.y);  // city scale: no overflow
   }
   const double turn = angle_[n] - angle_[0];
   const bool around = std::abs(turn) > std::numbers::pi;  // winds around s
