@@ -93,9 +93,9 @@ class SampleHorizon {
   std::vector<Entry> settled_;  ///< per sector: the steepest passed wall (-infinity: none)
   std::vector<std::array<Entry, kSlots>> pending_;  ///< per sector: walls not yet passed
   std::vector<std::uint8_t> pending_count_;
-  std::vector<double> angle_, reach_;  ///< scratch of add_ring (reach_ per sector, kept 0)
+  std::vector<double> angle_, reach_;    ///< scratch of add_ring (reach_ per sector, kept 0)
   std::vector<double> vertex_distance_;  ///< scratch of add_ring: each ring vertex's distance
-  std::vector<double> crossing_;       ///< scratch of close_sectors: a wall's border crossings
+  std::vector<double> crossing_;         ///< scratch of close_sectors: a wall's border crossings
   std::vector<int> touched_;
   std::vector<std::uint32_t> sector_mark_;  ///< sectors a run of the current ring closed
   std::uint32_t mark_ = 0;
