@@ -121,7 +121,7 @@ using detail::Json;
 enum class Format { CityJson, GeoJson };
 
 Json parse(std::string_view text, const std::string& name) {
-  if (std::optional<Json> joined = detail::join_cityjson_sequence(text, name))
+  if (std::optional<Json> joined = detail::join_json_sequence(text, name))
     return std::move(*joined);
   try {
     return Json::parse(text.begin(), text.end());

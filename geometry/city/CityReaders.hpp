@@ -39,10 +39,11 @@ bool is_geographic_crs(const std::string& normalised);
 /// The readable part of a JSON parser's message ("parse error at line L, column C: ...").
 std::string json_error_text(const nlohmann::json::exception& e);
 
-/// A CityJSON text sequence (a CityJSON header line, then one CityJSONFeature per line) joined
-/// into one CityJSON document (CityJsonSequence.cpp); nullopt when `text` is not one. Throws
-/// InputError naming the line of a feature that is no JSON or no CityJSONFeature.
-std::optional<Json> join_cityjson_sequence(std::string_view text, const std::string& file);
+/// A JSON text sequence (JsonSequence.cpp) joined into one document: a CityJSON header line
+/// and one CityJSONFeature per line into a CityJSON document, one GeoJSON Feature per line into
+/// a FeatureCollection; nullopt when `text` is neither. Throws InputError naming the line of an
+/// item that is no JSON or not of the sequence's kind.
+std::optional<Json> join_json_sequence(std::string_view text, const std::string& file);
 
 InputScan scan_cityjson(const Json& doc, const std::string& file);
 void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,

@@ -113,6 +113,7 @@ struct Feature {
   std::string roof_shape;               // lower case; "" when not given
   std::optional<double> roof_height;    // roof:height, else roof:levels x level height
   std::string lost;                     // why no footprint of positive area is left, or empty
+  std::string refused_height;           // a height or level count given but not positive, as given
   std::string payload;                  // ReadOptions::payload_key's property
 };
 
@@ -140,10 +141,23 @@ struct HeightReader {
     return props.contains(key) && !props[key].is_null();
   }
 
+  // Datasets write -1 or 0 where they do not know a building's height (footprint datasets
+  // do). No building is that tall, so such a value is no height at all: the next key, the
+  // levels, --default-height or, failing all, the tallest plausible building decide (thesis 7.1:
+  // what is unknown is as tall as it may be), never a building 0 m tall that anything hides.
+  std::optional<double> positive(const Json& props, const char* key, Feature& f) {
+    std::optional<double> v = length(props, key, f.id);
+    if (v && !(*v > 0)) {
+      if (f.refused_height.empty()) f.refused_height = std::string(key) + " " + props[key].dump();
+      return std::nullopt;
+    }
+    return v;
+  }
+
   void read(const Json& props, Feature& f) {
     for (const char* key : {"height", "building:height", "measuredHeight"})
-      if (!f.height) f.height = length(props, key, f.id);
-    if (std::optional<double> levels = length(props, "building:levels", f.id))
+      if (!f.height) f.height = positive(props, key, f);
+    if (std::optional<double> levels = positive(props, "building:levels", f))
       f.levels_height = *levels * options.level_height;
     if (!f.height && f.levels_height) {
       f.height = f.levels_height;
@@ -304,9 +318,10 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
                      "no height, building:height, measuredHeight or building:levels "
                      "(give a default height; --strict refuses objects of unknown height)");
   if (!height)
-    return file + ": " + f.id +
-           ": no height, building:height, measuredHeight or building:levels (and no "
-           "--default-height)";
+    return file + ": " + f.id + ": no height, building:height, measuredHeight or building:levels" +
+           (f.refused_height.empty() ? ""
+                                     : " (" + f.refused_height + " is no height: not positive)") +
+           " (and no --default-height)";
   if (!f.lost.empty()) return file + ": " + f.id + ": " + f.lost;
   // A roof cut to its eaves: the walls stand up to the eaves for sure; the roof above them has
   // a shape the tags do not give, so its prism only bounds where the building may be (thesis

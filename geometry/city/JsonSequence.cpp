@@ -1,10 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// CityJSON Text Sequences (CityJSONSeq, the `.city.jsonl` files of CityJSON 2.0 and the 3D BAG's
-// API): the first line is a CityJSON object with the transform, the reference system and the
-// metadata but no objects; every further line is a "CityJSONFeature": one city object with its
-// parts, and vertices of its own that its geometries index from 0. The lines are joined into one
-// CityJSON document, each feature's vertex indices moved past the vertices before it, so that
-// the CityJSON reader reads a sequence exactly as the same city written as one file.
+// JSON text sequences: files of one JSON document per line, which large exports and web APIs
+// write because a reader can stream them. Two kinds are read, each joined into the one
+// document its reader knows:
+// - CityJSON text sequences (CityJSONSeq, the `.city.jsonl` files of CityJSON 2.0, the 3D BAG's
+//   API, cjio): the first line is a CityJSON object with the transform, the reference system and
+//   the metadata but no objects; every further line is a "CityJSONFeature": one city object with
+//   its parts, and vertices of its own that its geometries index from 0. The features' vertex
+//   indices are moved past the vertices before them, so the CityJSON reader reads a sequence
+//   exactly as the same city written as one file.
+// - GeoJSON text sequences (RFC 8142, whose records start with the RS character, and the
+//   newline-delimited GeoJSON of `ogr2ogr -f GeoJSONSeq` and of large footprint datasets): one
+//   Feature per line, joined into a FeatureCollection.
 #include <string>
 
 #include "CityReaders.hpp"
@@ -13,8 +19,11 @@
 namespace urbanpvs::geometry::detail {
 namespace {
 
+// A line without the white space around it, nor RFC 8142's record separator (0x1E).
 std::string_view trim(std::string_view s) {
-  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  const auto space = [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\x1e';
+  };
   while (!s.empty() && space(s.front())) s.remove_prefix(1);
   while (!s.empty() && space(s.back())) s.remove_suffix(1);
   return s;
@@ -39,9 +48,9 @@ void shift_indices(Json& boundaries, std::size_t offset, int depth = 0) {
   throw InputError(problem, file, "line " + std::to_string(line), what);
 }
 
-// One feature line into `doc`: its vertices appended, its objects added with their indices
-// moved past the vertices already there.
-void add_feature(Json& doc, Json feature, const std::string& file, std::size_t line) {
+// One CityJSONFeature line into `doc`: its vertices appended, its objects added with their
+// indices moved past the vertices already there.
+void add_cityjson_feature(Json& doc, Json feature, const std::string& file, std::size_t line) {
   if (!feature.is_object() || !feature.contains("type") || feature["type"] != "CityJSONFeature")
     bad_line(InputProblem::BadStructure, file, line,
              "a CityJSON text sequence holds one \"CityJSONFeature\" per line after the first");
@@ -64,19 +73,41 @@ void add_feature(Json& doc, Json feature, const std::string& file, std::size_t l
   }
 }
 
+// One GeoJSON Feature line into the FeatureCollection `doc`.
+void add_geojson_feature(Json& doc, Json feature, const std::string& file, std::size_t line) {
+  if (!feature.is_object() || !feature.contains("type") || feature["type"] != "Feature")
+    bad_line(InputProblem::BadStructure, file, line,
+             "a GeoJSON text sequence holds one \"Feature\" per line");
+  doc["features"].push_back(std::move(feature));
+}
+
+bool has_type(const Json& doc, const char* type) {
+  return doc.is_object() && doc.contains("type") && doc["type"] == type;
+}
+
 }  // namespace
 
-std::optional<Json> join_cityjson_sequence(std::string_view text, const std::string& file) {
+std::optional<Json> join_json_sequence(std::string_view text, const std::string& file) {
   const std::size_t first_end = text.find('\n');
   if (first_end == std::string_view::npos || trim(text.substr(first_end)).empty())
     return std::nullopt;  // one line: a plain JSON document
   // A pretty-printed file's first line is no document of its own: that is the test.
-  Json doc = Json::parse(trim(text.substr(0, first_end)), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object() || !doc.contains("type") || doc["type"] != "CityJSON")
+  Json first = Json::parse(trim(text.substr(0, first_end)), nullptr, false);
+  Json doc;
+  void (*add)(Json&, Json, const std::string&, std::size_t) = nullptr;
+  if (has_type(first, "CityJSON")) {
+    doc = std::move(first);
+    if (!doc.contains("CityObjects") || !doc["CityObjects"].is_object())
+      doc["CityObjects"] = Json::object();
+    if (!doc.contains("vertices") || !doc["vertices"].is_array()) doc["vertices"] = Json::array();
+    add = add_cityjson_feature;
+  } else if (has_type(first, "Feature")) {
+    doc = {{"type", "FeatureCollection"}, {"features", Json::array()}};
+    doc["features"].push_back(std::move(first));
+    add = add_geojson_feature;
+  } else {
     return std::nullopt;
-  if (!doc.contains("CityObjects") || !doc["CityObjects"].is_object())
-    doc["CityObjects"] = Json::object();
-  if (!doc.contains("vertices") || !doc["vertices"].is_array()) doc["vertices"] = Json::array();
+  }
   std::size_t line = 1;
   for (std::size_t at = first_end + 1; at < text.size();) {
     ++line;
@@ -85,16 +116,16 @@ std::optional<Json> join_cityjson_sequence(std::string_view text, const std::str
     const std::string_view content = trim(text.substr(at, end - at));
     at = end + 1;
     if (content.empty()) continue;
-    Json feature;
+    Json item;
     try {
-      feature = Json::parse(content);
+      item = Json::parse(content);
     } catch (const nlohmann::json::exception& e) {
       std::string what = json_error_text(e);
-      // The parser counts within the line alone: its "line 1" is the feature's line.
+      // The parser counts within the line alone: its "line 1" is the item's line.
       if (auto p = what.find("line 1, column"); p != std::string::npos) what.erase(p, 8);
       bad_line(InputProblem::InvalidJson, file, line, what);
     }
-    add_feature(doc, std::move(feature), file, line);
+    add(doc, std::move(item), file, line);
   }
   return doc;
 }

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// CityJSON text sequences (.city.jsonl): a city written by this test as a sequence (a header line,
-// then one CityJSONFeature per building with its parts and its own vertices, indexed from 0)
-// reads exactly as the same city written as one CityJSON file: the bundled district and, where
-// ../shared/cities has it, the 3D BAG tile. The sequence's own faults name their line
-// (tests/data/bad/cityjsonseq_*, ReaderTest.cpp).
+// JSON text sequences (JsonSequence.cpp). A city written by this test as a CityJSON text
+// sequence (a header line, then one CityJSONFeature per building with its parts and its own
+// vertices, indexed from 0) reads exactly as the same city written as one CityJSON file: the
+// bundled district and, where ../shared/cities has it, the 3D BAG tile. GeoJSON written one
+// Feature per line, with or without RFC 8142's record separators, reads exactly as the
+// FeatureCollection: footprints written by the test and, where ../shared/cities has them,
+// Helsinki's. The sequences' own faults
+// name their line (tests/data/bad/*seq_*, ReaderTest.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -141,6 +144,66 @@ TEST(CityJsonSequence, BundledDistrictReadsAsItsFile) {
 TEST(CityJsonSequence, TuDelft3dBagTileReadsAsItsFile) {
   REQUIRE_SHARED_CITY(path, "tudelft_3dbag_tile5910.city.json");
   check_sequence_of(path);
+}
+
+// `doc`'s features one per line, each after `prefix` (RFC 8142: the record separator).
+std::string as_geojson_sequence(const Json& doc, const std::string& prefix) {
+  std::string out;
+  for (const Json& f : doc["features"]) out += prefix + f.dump() + "\n";
+  return out;
+}
+
+// Footprints in lon/lat as a footprint dataset writes them, one with an unknown height (-1):
+// it stays an object that occludes nothing, as tall as a building may be (GeoJsonReader.cpp).
+Json footprints() {
+  Json doc = {{"type", "FeatureCollection"}, {"features", Json::array()}};
+  for (int i = 0; i < 8; ++i) {
+    const double x = 4.37 + 0.0004 * i, y = 52.0 + 0.0001 * (i % 3);
+    Json ring = Json::array();
+    for (auto [dx, dy] : {std::pair{0.0, 0.0}, {0.0002, 0.0}, {0.0002, 0.0002}, {0.0, 0.0002}})
+      ring.push_back({x + dx, y + dy});
+    ring.push_back(ring[0]);
+    doc["features"].push_back({{"type", "Feature"},
+                               {"properties", {{"height", i == 5 ? -1.0 : 6.0 + i}}},
+                               {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}});
+  }
+  return doc;
+}
+
+TEST(GeoJsonSequence, FootprintsReadAsTheirFeatureCollection) {
+  const Json doc = footprints();
+  const City file = read_city_text(doc.dump(), "city.geojson", {});
+  for (const std::string prefix : {"", "\x1e"}) {
+    const City sequence = read_city_text(as_geojson_sequence(doc, prefix), "city.geojsonl", {});
+    expect_same_city(file, sequence);
+  }
+  ASSERT_EQ(file.objects.size(), 8u);
+  EXPECT_TRUE(file.objects[4].occludes);
+  EXPECT_DOUBLE_EQ(file.objects[4].bbox.zmax, 10.0);
+  // -1 is "unknown": no occluder, and tested as tall as a building may be.
+  EXPECT_FALSE(file.objects[5].occludes);
+  EXPECT_TRUE(file.objects[5].occluders.empty());
+  EXPECT_DOUBLE_EQ(file.objects[5].bbox.zmax, ReadOptions{}.max_height);
+  ASSERT_EQ(file.report.non_occluding.size(), 1u);
+  EXPECT_NE(file.report.non_occluding[0].find("height -1.0 is no height"), std::string::npos)
+      << file.report.non_occluding[0];
+  // With a default height, that height stands in for it.
+  ReadOptions with_default;
+  with_default.default_height = 9;
+  const City defaulted = read_city_text(doc.dump(), "city.geojson", with_default);
+  EXPECT_TRUE(defaulted.objects[5].occludes);
+  EXPECT_DOUBLE_EQ(defaulted.objects[5].bbox.zmax, 9.0);
+  EXPECT_EQ(defaulted.report.default_heights, 1u);
+}
+
+TEST(GeoJsonSequence, HelsinkiReadsAsItsFeatureCollection) {
+  REQUIRE_SHARED_CITY(path, "helsinki_buildings.geojson");
+  ReadOptions options;
+  options.default_height = 12;  // most of its buildings have no height tag
+  const std::string text = read_text(path);
+  const Json doc = Json::parse(text);
+  const City file = read_city_text(text, "city.geojson", options);
+  expect_same_city(file, read_city_text(as_geojson_sequence(doc, ""), "city.geojsonl", options));
 }
 
 TEST(CityJsonSequence, BlankLinesAndCarriageReturnsAreAllowed) {
