@@ -18,6 +18,11 @@ const SettingTable<BlockOptions>& block_settings() {
                         "Block outlines are simplified within this before shrinking, and shrunk "
                         "by as much more (0: every vertex kept)",
                         [](B& b) -> double& { return b.outline_tolerance; }),
+      number_setting<B>(
+          "terrain-step", "m", S::Occluders, 0, 1000,
+          "The terrain occludes as levels this far apart (0: it hides nothing; 8 suits "
+          "hilly cities whose buildings have heights)",
+          [](B& b) -> double& { return b.terrain_step; }),
   };
   return table;
 }

@@ -52,6 +52,7 @@ std::string report_json(const BakeReport& r) {
   j["counts"] = {{"objects", r.objects},
                  {"blocks", r.blocks},
                  {"occluders", r.occluders},
+                 {"terrain_occluders", r.terrain_occluders},
                  {"cells", r.cells},
                  {"cell_area_m2", r.cell_area},
                  {"multipolygons", r.multipolygons},
@@ -104,8 +105,10 @@ std::string summary_text(const BakeReport& r) {
                       "ranks:       %zu (cells %s; most over mean %.2f; peak per rank %s)\n",
                       r.ranks.size(), shares.c_str(), r.load_balance(), mib(peak).c_str()));
   }
-  add(std::snprintf(line, sizeof line, "objects:     %zu (%zu blocks, %zu occluders)\n", r.objects,
-                    r.blocks, r.occluders));
+  const std::string terrain =
+      r.terrain_occluders > 0 ? ", " + std::to_string(r.terrain_occluders) + " of the terrain" : "";
+  add(std::snprintf(line, sizeof line, "objects:     %zu (%zu blocks, %zu occluders%s)\n",
+                    r.objects, r.blocks, r.occluders, terrain.c_str()));
   add(std::snprintf(line, sizeof line,
                     "input:       %zu geometric repairs, %zu objects that occlude nothing\n",
                     r.repairs.size(), r.non_occluding.size()));

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "urbanpvs/geometry/city/ObjectOutline.hpp"
+#include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
 
@@ -72,6 +73,11 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   const double shrink =
       options_.shrink_override >= 0 ? options_.shrink_override : options_.cells.epsilon;
   occluders_ = geometry::shrink_blocks(blocks_, shrink);
+  // The terrain under the objects hides what lies behind its crests (thesis 7.3.2); beyond
+  // them it stands between no cell and no object.
+  for (geometry::Occluder& o : geometry::terrain_occluders(city.terrain, city.bounds().xy,
+                                                           options_.blocks.terrain_step, shrink))
+    occluders_.push_back(std::move(o));
   mesh_ = geometry::build_view_cells(city, options_.cells);
 
   // Two pixels of margin: every object's footprint and every cell lies strictly inside, so the
@@ -83,6 +89,7 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   zlo_ = all.zmin - 1.0;
   for (const geometry::ViewCell& c : mesh_.cells) zlo_ = std::min(zlo_, c.zmin - 1.0);
   zhi_ = all.zmax + 1000.0;
+  for (const geometry::Occluder& o : occluders_) zhi_ = std::max(zhi_, o.top_z + 1000.0);
   object_index_ = BoxQuadtree(object_boxes(city.objects));
   object_outlines_.reserve(city.objects.size());
   for (const geometry::CityObject& o : city.objects)

@@ -2,6 +2,7 @@
 // The run of urbanpvs-preprocess: read → scene → cells (parallel, journalled) → file.
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -12,6 +13,7 @@
 
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
 #include "urbanpvs/preprocess/bake/BakeJournal.hpp"
 #include "urbanpvs/preprocess/bake/BakeProgress.hpp"
@@ -273,6 +275,9 @@ int Run::execute() {
   report_.seconds.scene = seconds_since(start);
   report_.blocks = scene.blocks().size();
   report_.occluders = scene.occluders().size();
+  report_.terrain_occluders = static_cast<std::size_t>(std::count_if(
+      scene.occluders().begin(), scene.occluders().end(),
+      [](const geometry::Occluder& o) { return o.block == geometry::kTerrainBlock; }));
   report_.cells = scene.cell_count();
   report_.cell_area = scene.mesh().free_area;
   note("scene: %zu blocks, %zu occluders, %zu view cells (%.2f s)", report_.blocks,

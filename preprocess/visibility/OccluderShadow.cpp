@@ -50,7 +50,7 @@ ShadowPolygon clip_to_box(ShadowPolygon poly, const Box2& box) {
 
 std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b, double top,
                                               const Box2& clip) {
-  if (!faces(a, b, sample)) return std::nullopt;
+  if (!casts_shadow(a, b, sample, top)) return std::nullopt;
   const Vec2 v{sample.x, sample.y};
   // The plane through V and the edge's top: normal n = (B - A) x (V - A).
   const Vec2 d = b - a, w = v - a;

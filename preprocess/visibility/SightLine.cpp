@@ -29,7 +29,7 @@ bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tre
         double low;
         if (!lowest_in(o.bounds, &low) || !(o.top_z - margin > low)) return;
         geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
-          if (blocked) return;
+          if (blocked || !casts_shadow(a, b, from, o.top_z)) return;
           const Vec2 e = b - a;
           const double den = geometry::cross(d, e);
           if (den == 0) return;

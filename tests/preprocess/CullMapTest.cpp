@@ -33,11 +33,14 @@ Reference reference_height(const Vec3& v3, const std::vector<Occluder>& occluder
   const Vec2 v{v3.x, v3.y};
   for (const Occluder& o : occluders)
     geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
+      // A wall casts a shadow when it faces V, and every wall when V is above its top (a line
+      // from above comes down through the top and out through a wall facing away).
       const double side_v = geometry::cross(b - a, v - a);
-      if (side_v >= 0) return;  // back-facing
+      if (side_v == 0 || (side_v > 0 && !(v3.z > o.top_z))) return;
       r.boundary_distance = std::min({r.boundary_distance, line_distance(p, a, b),
                                       line_distance(p, v, a), line_distance(p, v, b)});
-      const bool behind = geometry::cross(b - a, p - a) > 0;
+      const double side_p = geometry::cross(b - a, p - a);
+      const bool behind = side_v < 0 ? side_p > 0 : side_p < 0;  // across the edge from V
       const bool within = geometry::cross(a - v, p - v) * geometry::cross(a - v, b - v) >= 0 &&
                           geometry::cross(b - v, p - v) * geometry::cross(b - v, a - v) >= 0;
       if (!behind || !within) return;

@@ -30,6 +30,19 @@ const geometry::City& small_city() {
   return city;
 }
 
+// The same city on 40 m of hills (a TINRelief), which occlude (TerrainOccluders.hpp).
+const geometry::City& hilly_city() {
+  static const geometry::City city = [] {
+    cities::CityParams p;
+    p.size_km2 = 0.1;
+    p.seed = 5;
+    p.hills = 40;
+    return geometry::read_city_text(cities::cityJsonText(cities::generateCity(p)),
+                                    "hills.city.json");
+  }();
+  return city;
+}
+
 // Cells in a strip from the middle of the city to beyond its edge.
 BakeOptions strip_options(const geometry::City& city) {
   BakeOptions o;
@@ -96,6 +109,27 @@ TEST(Hierarchical, DefaultsGiveASupersetOfTheBruteForcePvsAtMostTwoPercentLarger
   EXPECT_GT(c.counters.occluders_far_field, 0u);
   std::printf("defaults: mean PVS hierarchical %.2f brute force %.2f\n",
               c.hierarchical / double(c.cells), c.brute / double(c.cells));
+}
+
+// The terrain's levels are occluders like any other: the cells stand on them, inside their
+// outlines and above their tops, which no building's occluder does. The hierarchical test
+// (near maps, sample horizons, sight lines) stays a superset of the brute-force map over the
+// same occluders, and the hills hide objects that the buildings alone do not.
+TEST(Hierarchical, TerrainOccludersKeepASupersetOfTheBruteForcePvsAndHideMore) {
+  BakeOptions o = strip_options(hilly_city());
+  o.blocks.terrain_step = 2;  // finer than any user would take: more levels, more walls
+  const Comparison with = compare(hilly_city(), o);
+  ASSERT_GT(with.cells, 15u);
+  EXPECT_EQ(with.not_superset, 0u);
+  EXPECT_LE(with.hierarchical, 1.02 * with.brute);
+  o.blocks.terrain_step = 0;
+  const Comparison without = compare(hilly_city(), o);
+  EXPECT_EQ(without.not_superset, 0u);
+  EXPECT_LT(with.brute, without.brute);
+  std::printf(
+      "hills: mean PVS hierarchical %.2f brute force %.2f; without the terrain %.2f / %.2f\n",
+      with.hierarchical / double(with.cells), with.brute / double(with.cells),
+      without.hierarchical / double(without.cells), without.brute / double(without.cells));
 }
 
 TEST(Hierarchical, SampleHorizonsAloneStayASupersetOfTheBruteForcePvs) {

@@ -290,7 +290,7 @@ TEST(SampleHorizon, PointsAndOutOfOrderQueriesStayConservative) {
   EXPECT_GT(hidden, 1000u);
 }
 
-TEST(SightLine, AgreesWithEveryWallTestedInTurn) {
+TEST(SightLine, AgreesWithEveryDrawnWallTestedInTurn) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> pos(-150, 150), size(4, 25), top(3, 40), eye(0.5, 6);
   std::vector<Occluder> occluders;
@@ -307,7 +307,13 @@ TEST(SightLine, AgreesWithEveryWallTestedInTurn) {
   int blocked = 0;
   for (int k = 0; k < 4000; ++k) {
     const Vec3 s{pos(rng), pos(rng), eye(rng)}, p{pos(rng), pos(rng), top(rng)};
-    const bool expected = blocked_by_walls(s, p, occluders);
+    // The walls a map draws: those facing s, and every wall of an occluder s is above.
+    bool expected = false;
+    for (const Occluder& o : occluders)
+      geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
+        const bool drawn = s.z > o.top_z || geometry::cross(b - a, Vec2{s.x, s.y} - a) < 0;
+        expected = expected || (drawn && wall_cuts(s, p, a, b, o.top_z));
+      });
     ASSERT_EQ(sight_line_blocked(s, p, tree, occluders, 0), expected) << k;
     blocked += expected ? 1 : 0;
   }

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
+#include <random>
 
 #include "urbanpvs/cities/CityGenerator.hpp"
 #include "urbanpvs/cities/CityJsonWriter.hpp"
@@ -83,9 +85,44 @@ TEST(Validate, GeneratedHillyCityHasNoMisses) {
   for (const geometry::CityObject& o : city.objects)
     lo = std::min(lo, o.ground_z), hi = std::max(hi, o.ground_z);
   EXPECT_GT(hi - lo, 10) << "the buildings do not stand on the hills";
-  const validate::ValidationReport r = bake_and_validate(city, small_bake(city, 1.0, 1.39), 1500);
+  preprocess::BakeOptions o = small_bake(city, 1.0, 1.39);
+  const validate::ValidationReport r = bake_and_validate(city, o, 1000);
   EXPECT_TRUE(r.misses.empty());
   EXPECT_GT(r.viewpoints, 0u);
+  // The hills as occluders (TerrainOccluders.hpp), at a finer step than any user would take:
+  // more levels, more walls that the samples stand inside of and above.
+  o.blocks.terrain_step = 2;
+  const validate::ValidationReport t = bake_and_validate(city, o, 1000);
+  EXPECT_TRUE(t.misses.empty());
+  EXPECT_LT(t.pvs_total, r.pvs_total) << "the hills hide nothing";
+}
+
+// On a slope a cell's prism reaches from its lowest ground: the validator's viewpoints stand on
+// the terrain where they are, at least the eye's lowest height above it (a point under the
+// terrain would see, through the earth, what is also under it: no surface in between).
+TEST(ValidateRayScene, ViewpointsStandOnTheTerrainNotInIt) {
+  geometry::City c;
+  // The plane z = x / 2 over [0, 40]²: two triangles.
+  using V = geometry::Vec3;
+  c.terrain.triangles = {{{V{0, 0, 0}, V{40, 0, 20}, V{40, 40, 20}}},
+                         {{V{0, 0, 0}, V{40, 40, 20}, V{0, 40, 0}}}};
+  const validate::RayScene s(c);
+  EXPECT_DOUBLE_EQ(s.ground_at({10, 30}), 5.0);
+  EXPECT_DOUBLE_EQ(s.ground_at({20, 20}), 10.0);  // on the shared edge
+  EXPECT_EQ(s.ground_at({50, 20}), -std::numeric_limits<double>::infinity());
+  runtime::CellGeometry g;
+  g.triangle = {{{10, 10}, {30, 10}, {30, 30}}};
+  g.z_min = 5 + 1.5;   // the lowest ground under the cell (x = 10) plus the lowest eye
+  g.z_max = 15 + 2.0;  // the highest (x = 30) plus the highest eye
+  EXPECT_DOUBLE_EQ(validate::lowest_viewpoint(g, s, 1.5, {10, 10}), 6.5);
+  EXPECT_DOUBLE_EQ(validate::lowest_viewpoint(g, s, 1.5, {30, 20}), 16.5);
+  EXPECT_DOUBLE_EQ(validate::lowest_viewpoint(g, s, 3.0, {30, 20}), 17.0);  // never above the top
+  std::mt19937_64 rng(3);
+  for (int k = 0; k < 500; ++k) {
+    const Vec3 v = validate::random_viewpoint(g, k % 2 == 0, s, 1.5, rng);
+    EXPECT_GE(v.z, v.x / 2 + 1.5 - 1e-9) << "a viewpoint inside the earth";
+    EXPECT_LE(v.z, g.z_max);
+  }
 }
 
 // ---- the ray scene on hand-built boxes -------------------------------------------------------

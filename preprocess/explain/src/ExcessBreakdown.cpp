@@ -26,7 +26,7 @@ using validate::Vec3;
 // a corner of a cell lies on a building's wall, and a viewpoint in the wall's plane would look
 // along it.
 std::vector<Vec3> cell_points(const runtime::CellGeometry& c, std::size_t random,
-                              std::uint32_t cell) {
+                              std::uint32_t cell, const validate::RayScene& scene, double eye_min) {
   const auto& t = c.triangle;
   const double cx = (t[0].x + t[1].x + t[2].x) / 3, cy = (t[0].y + t[1].y + t[2].y) / 3;
   auto inward = [&](double x, double y, double z) {
@@ -40,12 +40,12 @@ std::vector<Vec3> cell_points(const runtime::CellGeometry& c, std::size_t random
     const auto& n = t[(k + 1) % 3];
     out.push_back(inward(0.5 * (t[k].x + n.x), 0.5 * (t[k].y + n.y), c.z_max));
   }
-  out.push_back({cx, cy, c.z_min});
+  out.push_back({cx, cy, validate::lowest_viewpoint(c, scene, eye_min, {cx, cy})});
   // Random points, as the validator draws its viewpoints (the top face for even ones, the
   // prism for odd ones), seeded by the cell: the same cell tries the same points.
   std::mt19937_64 rng(0x9e3779b97f4a7c15ULL ^ cell);
   for (std::size_t i = 0; i < random; ++i)
-    out.push_back(validate::random_viewpoint(c, i % 2 == 0, rng));
+    out.push_back(validate::random_viewpoint(c, i % 2 == 0, scene, eye_min, rng));
   return out;
 }
 
@@ -234,7 +234,8 @@ ExcessBreakdown explain_excess(const geometry::City& city, const runtime::PvsFil
     for (std::size_t k = begin; k < end; ++k) {
       runtime::CellGeometry g;
       pvs.cell(pairs[k].second, g);
-      for (const Vec3& p : cell_points(g, options.cell_viewpoints, pairs[k].second))
+      for (const Vec3& p : cell_points(g, options.cell_viewpoints, pairs[k].second, scene_of(t),
+                                       pvs.settings().eye_min_m))
         if (seen_from(scene_of(t), p, aims, object, crack)) {
           seen_in_cell[k] = 1;
           break;

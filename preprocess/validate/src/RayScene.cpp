@@ -332,7 +332,35 @@ std::vector<double> RayScene::add_terrain(const geometry::City& city,
         for (std::uint32_t i : buckets[std::size_t(y) * std::size_t(nx) + std::size_t(x)])
           if (boxes[i].xy.overlaps(e)) top[o.index] = std::max(top[o.index], boxes[i].zmax);
   }
+  terrain_ = tin;  // for ground_at
+  terrain_bounds_ = all;
+  terrain_nx_ = nx, terrain_ny_ = ny;
+  terrain_grid_ = std::move(buckets);
   return top;
+}
+
+double RayScene::ground_at(Vec2 p) const {
+  double ground = -std::numeric_limits<double>::infinity();
+  if (terrain_.empty() || p.x < terrain_bounds_.min.x || p.x > terrain_bounds_.max.x ||
+      p.y < terrain_bounds_.min.y || p.y > terrain_bounds_.max.y)
+    return ground;
+  const int x =
+      std::clamp(int(std::floor((p.x - terrain_bounds_.min.x) / kGroundReach)), 0, terrain_nx_ - 1);
+  const int y =
+      std::clamp(int(std::floor((p.y - terrain_bounds_.min.y) / kGroundReach)), 0, terrain_ny_ - 1);
+  for (std::uint32_t i :
+       terrain_grid_[std::size_t(y) * std::size_t(terrain_nx_) + std::size_t(x)]) {
+    const auto& v = terrain_[i].v;
+    const Vec2 a{v[0].x, v[0].y}, b{v[1].x, v[1].y}, c{v[2].x, v[2].y};
+    const double d = geometry::cross(b - a, c - a);
+    if (d == 0) continue;  // upright: its edges are those of the triangles beside it
+    const double l1 = geometry::cross(p - a, c - a) / d, l2 = geometry::cross(b - a, p - a) / d;
+    const double l0 = 1 - l1 - l2;
+    constexpr double kOnEdge = 1e-9;  // a point on a shared edge belongs to both triangles
+    if (l0 < -kOnEdge || l1 < -kOnEdge || l2 < -kOnEdge) continue;
+    ground = std::max(ground, l0 * v[0].z + l1 * v[1].z + l2 * v[2].z);
+  }
+  return ground;
 }
 
 bool RayScene::make_face(const Rings& rings, std::uint32_t object, Face& f) {

@@ -105,14 +105,21 @@ std::vector<Vec3> target_points(const geometry::CityObject& o, double spacing) {
   return pts;
 }
 
-Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_64& rng) {
+double lowest_viewpoint(const runtime::CellGeometry& c, const RayScene& scene, double eye_min,
+                        Vec2 at) {
+  return std::min(c.z_max, std::max(c.z_min, scene.ground_at(at) + eye_min));
+}
+
+Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, const RayScene& scene,
+                      double eye_min, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   double r1 = std::sqrt(u(rng)), r2 = u(rng);
   const auto& t = c.triangle;
   const double x = (1 - r1) * t[0].x + r1 * (1 - r2) * t[1].x + r1 * r2 * t[2].x;
   const double y = (1 - r1) * t[0].y + r1 * (1 - r2) * t[1].y + r1 * r2 * t[2].y;
-  const double z = top ? c.z_max : c.z_min + u(rng) * (c.z_max - c.z_min);
-  return {x, y, z};
+  if (top) return {x, y, c.z_max};
+  const double low = lowest_viewpoint(c, scene, eye_min, {x, y});
+  return {x, y, low + u(rng) * (c.z_max - low)};
 }
 
 const Vec3* first_target_seen(const RayScene& scene, const Vec3& v,
@@ -162,6 +169,7 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
                        1000;
 
   ValidationReport report;
+  const double eye_min = pvs.settings().eye_min_m;  // a viewer stands this high on the terrain
   std::mt19937_64 rng(options.seed);
   runtime::PvsDecoder decoder(pvs);
   std::vector<char> in_pvs(city.objects.size()), seen(city.objects.size());
@@ -172,7 +180,7 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
         std::uniform_int_distribution<std::uint64_t>(0, pvs.cell_count() - 1)(rng));
     runtime::CellGeometry geometry;
     pvs.cell(cell, geometry);
-    const Vec3 v = random_viewpoint(geometry, n % 2 == 0, rng);
+    const Vec3 v = random_viewpoint(geometry, n % 2 == 0, scene, eye_min, rng);
     if (decoder.decode(cell) != runtime::Status::kOk)
       throw std::runtime_error("cannot decode the PVS of cell " + std::to_string(cell));
     std::fill(in_pvs.begin(), in_pvs.end(), 0);

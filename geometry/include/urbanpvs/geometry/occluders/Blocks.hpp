@@ -29,6 +29,14 @@ struct BlockOptions {
   /// (39 s of 42 s on a generated 4 km² city; 3.2 s with 1 mm). 0 keeps every vertex.
   /// [Units: m]
   double outline_tolerance = 0.001;
+  /// The terrain (a TINRelief, or a DEM given with --terrain) occludes as stepped levels this
+  /// far apart, each the ground where the terrain is certainly at least that high, eroded by ε
+  /// (TerrainOccluders.hpp). 0, the default: the terrain hides nothing. Off by default for its
+  /// price where it gains little (README, "Terrain as an occluder"): on Monaco's DEM, whose
+  /// buildings mostly have no height, 8 m levels made the bake 5.9x slower for 3.6 % off the
+  /// mean PVS; on a generated hilly city they took 9.7 % off it at 13 % more time.
+  /// [Units: m]
+  double terrain_step = 0;
 };
 
 /// One step of a block's height field: everything of the block at least `top_z` high.

@@ -47,6 +47,7 @@ struct BakeReport {
   /// Each rank's share in an MPI job (DistributedBake.hpp); empty for a run of one process.
   std::vector<RankShare> ranks;
   std::size_t objects = 0, blocks = 0, occluders = 0, cells = 0;
+  std::size_t terrain_occluders = 0;  ///< of `occluders`, the terrain's levels (--terrain-step)
   /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding),
   /// and what it warns of (ReadReport::warnings).
   std::vector<std::string> repairs, non_occluding, warnings;

@@ -55,15 +55,26 @@ struct OccluderShadow {
 };
 
 /// True when the edge a→b of a ring that has its region on the left (counter-clockwise outer
-/// ring, clockwise hole) faces `sample`: only such edges cast shadows that are not already
-/// covered by the shadows of the ring's other edges (thesis 4.3.2, back-face culling).
+/// ring, clockwise hole) faces `sample`: from a sample below the occluder's top, only such
+/// edges cast shadows that are not already covered by the shadows of the ring's other edges
+/// (thesis 4.3.2, back-face culling).
 inline bool faces(Vec2 a, Vec2 b, const Vec3& sample) {
   return geometry::cross(b - a, Vec2{sample.x, sample.y} - a) < 0;
 }
 
+/// Whether the wall over a→b of an occluder with top `top` casts a shadow from `sample`: when
+/// it faces the sample, and every wall when the sample is above the top. A line from above
+/// that comes down through the top leaves the occluder through a wall facing away, below its
+/// top, and nothing of a front wall's shadow says so: a low building seen from a hill, a
+/// terrain level the cell stands on (TerrainOccluders.hpp). The maps and the exact sight lines
+/// both use this rule, so they judge alike.
+inline bool casts_shadow(Vec2 a, Vec2 b, const Vec3& sample, double top) {
+  return sample.z > top || faces(a, b, sample);
+}
+
 /// The shadow of the wall over edge a→b with top height `top`, seen from `sample`, clipped by us
 /// to `clip` (never left to a rasterizer's clipping, which is not exact at the border). Nothing
-/// when the edge does not face the sample or the wedge misses `clip`.
+/// when the wall casts no shadow from the sample (casts_shadow) or the wedge misses `clip`.
 std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b, double top,
                                               const Box2& clip);
 

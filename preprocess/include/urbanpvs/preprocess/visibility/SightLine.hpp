@@ -14,8 +14,11 @@
 
 namespace urbanpvs::preprocess {
 
-/// True when the segment from `from` to `to` crosses an occluder wall more than `margin` below
-/// the wall's top. `tree` indexes `occluders` (BakeScene::occluder_index()).
+/// True when the segment from `from` to `to` crosses an occluder wall that casts a shadow from
+/// `from` (casts_shadow: it faces `from`, or `from` is above the occluder's top) more than
+/// `margin` below the wall's top: the walls a cull map draws, so that the hierarchical test
+/// never hides more than the brute-force map. `tree` indexes `occluders`
+/// (BakeScene::occluder_index()).
 bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tree,
                         std::span<const geometry::Occluder> occluders, double margin);
 

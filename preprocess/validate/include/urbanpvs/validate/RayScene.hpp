@@ -72,6 +72,10 @@ class RayScene {
 
   const Box2& bounds() const { return bounds_; }
 
+  /// The highest terrain over p (its TIN triangles that hold p), or -infinity where the city
+  /// has no terrain there. A viewpoint below it is inside the earth: it sees nothing.
+  double ground_at(Vec2 p) const;
+
  private:
   static constexpr double kNone = 2;  ///< "no hit": beyond every segment parameter
   /// One blocker polygon, its rings projected to the plane that drops axis `drop`.
@@ -137,6 +141,11 @@ class RayScene {
   double cell_ = 8;  // [m] side of a grid cell
   int nx_ = 1, ny_ = 1;
   std::vector<std::vector<std::uint32_t>> grid_;  // Kind | index
+  // The terrain's triangles, bucketed by a grid of kGroundReach over their extent.
+  std::vector<geometry::Triangle3> terrain_;
+  Box2 terrain_bounds_;
+  int terrain_nx_ = 0, terrain_ny_ = 0;
+  std::vector<std::vector<std::uint32_t>> terrain_grid_;
   mutable std::vector<std::uint32_t> face_stamp_, skirt_stamp_, box_stamp_;
   mutable std::uint32_t query_ = 0;
   static constexpr std::uint32_t kNoBlocker = ~0u;

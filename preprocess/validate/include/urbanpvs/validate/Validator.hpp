@@ -90,9 +90,18 @@ const Vec3* first_target_seen(const RayScene& scene, const Vec3& v,
                               const std::vector<Vec3>& targets, std::uint32_t object, double crack,
                               std::size_t* rays = nullptr);
 
+/// The lowest viewpoint of a cell over `at`: the bottom of its prism, or `eye_min` above the
+/// scene's terrain there where that is higher, never above the prism's top. On a slope the
+/// prism reaches from the cell's lowest ground: what lies below the terrain at `at` is earth,
+/// where no one stands and from where a segment to a point also under the terrain crosses no
+/// surface.
+double lowest_viewpoint(const runtime::CellGeometry& c, const RayScene& scene, double eye_min,
+                        Vec2 at);
+
 /// A random viewpoint of a cell, as the validator draws them: uniform over the triangle, on the
-/// top face when `top`, at a uniform height in the prism otherwise.
-Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, std::mt19937_64& rng);
+/// top face when `top`, otherwise at a uniform height from lowest_viewpoint to the top.
+Vec3 random_viewpoint(const runtime::CellGeometry& c, bool top, const RayScene& scene,
+                      double eye_min, std::mt19937_64& rng);
 
 /// Throws std::runtime_error when the file does not belong to the city (object count or ids
 /// differ), std::invalid_argument for options out of their limits. `city` must be read with

@@ -1,0 +1,306 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace urbanpvs::geometry {
+namespace {
+
+// 4M squares (32 MB of heights): a 4 km city at the default 4 m, a larger one on coarser ones.
+constexpr double kMaxSquares = 4.0e6;
+// A tile holds about this much ground: a cell's first map (128 pixels of 1.4 m) meets a few.
+constexpr double kTileSide = 128;  // [Units: m]
+// A square counts as covered when the TIN's pieces in it fill this share of it: what is left
+// is the rounding of the clipped areas.
+constexpr double kCovered = 1 - 1e-9;
+
+struct Point3 {
+  double x, y, z;
+};
+
+/// A triangle clipped by four half-planes has at most 7 corners.
+struct ClipPolygon {
+  std::array<Point3, 8> p{};
+  int n = 0;
+};
+
+// One Sutherland-Hodgman step: keeps the part where `d(p) >= 0` (d affine in x, y), the height
+// interpolated along each cut edge, so every corner of the result lies on the triangle.
+template <class Distance>
+ClipPolygon clip(const ClipPolygon& in, Distance d) {
+  ClipPolygon out;
+  for (int k = 0; k < in.n; ++k) {
+    const Point3 a = in.p[static_cast<std::size_t>(k)];
+    const Point3 b = in.p[static_cast<std::size_t>((k + 1) % in.n)];
+    const double da = d(a), db = d(b);
+    if (da >= 0) out.p[static_cast<std::size_t>(out.n++)] = a;
+    if ((da >= 0) != (db >= 0)) {
+      const double t = da / (da - db);
+      out.p[static_cast<std::size_t>(out.n++)] = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y),
+                                                  a.z + t * (b.z - a.z)};
+    }
+  }
+  return out;
+}
+
+ClipPolygon clip_to_box(const Triangle3& t, const Box2& box) {
+  ClipPolygon p;
+  for (const Vec3& v : t.v) p.p[static_cast<std::size_t>(p.n++)] = {v.x, v.y, v.z};
+  p = clip(p, [&](const Point3& q) { return q.x - box.min.x; });
+  p = clip(p, [&](const Point3& q) { return box.max.x - q.x; });
+  p = clip(p, [&](const Point3& q) { return q.y - box.min.y; });
+  return clip(p, [&](const Point3& q) { return box.max.y - q.y; });
+}
+
+double area_of(const ClipPolygon& p) {
+  double a = 0;
+  for (int k = 0; k < p.n; ++k) {
+    const Point3& u = p.p[static_cast<std::size_t>(k)];
+    const Point3& v = p.p[static_cast<std::size_t>((k + 1) % p.n)];
+    a += u.x * v.y - u.y * v.x;
+  }
+  return 0.5 * std::abs(a);
+}
+
+/// A grid of sub-cells over one tile: each square split into three columns and three rows at
+/// ε from its sides. The erosion of a union of squares by a square of half-side ε < side / 2
+/// is a union of such sub-cells: a point's ε-box meets a neighbour square only within ε of
+/// the side they share.
+class TileMask {
+ public:
+  TileMask(const TerrainRaster& r, int i0, int i1, int j0, int j1, double epsilon)
+      : raster_(r), i0_(i0), j0_(j0), nu_(3 * (i1 - i0)), nv_(3 * (j1 - j0)) {
+    xs_ = lines(r.area.min.x, i0, i1, r.square, epsilon);
+    ys_ = lines(r.area.min.y, j0, j1, r.square, epsilon);
+    in_.assign(static_cast<std::size_t>(nu_) * static_cast<std::size_t>(nv_), 0);
+  }
+
+  /// The sub-cells of the squares at least h, eroded; true when any is set.
+  bool erode(double h) {
+    auto square = [&](int i, int j) { return raster_.lowest_at(i, j) >= h; };
+    bool any = false;
+    for (int v = 0; v < nv_; ++v)
+      for (int u = 0; u < nu_; ++u) {
+        const int i = i0_ + u / 3, j = j0_ + v / 3;
+        const int dx = u % 3 == 0 ? -1 : (u % 3 == 2 ? 1 : 0);
+        const int dy = v % 3 == 0 ? -1 : (v % 3 == 2 ? 1 : 0);
+        const bool set = square(i, j) && (dx == 0 || square(i + dx, j)) &&
+                         (dy == 0 || square(i, j + dy)) &&
+                         (dx == 0 || dy == 0 || square(i + dx, j + dy));
+        at(u, v) = set ? 1 : 0;
+        any = any || set;
+      }
+    return any;
+  }
+
+  bool full() const {
+    return std::all_of(in_.begin(), in_.end(), [](unsigned char c) { return c != 0; });
+  }
+  const std::vector<unsigned char>& cells() const { return in_; }
+
+  /// Where two sub-cells meet only at a corner, one is cleared: the rings traced below then
+  /// never touch themselves or each other (an occluder may always be smaller).
+  void separate_diagonals() {
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (int v = 0; v + 1 < nv_; ++v)
+        for (int u = 0; u + 1 < nu_; ++u) {
+          const bool a = get(u, v), b = get(u + 1, v), c = get(u, v + 1), d = get(u + 1, v + 1);
+          if (a && d && !b && !c) {
+            at(u, v) = 0;
+            changed = true;
+          } else if (b && c && !a && !d) {
+            at(u + 1, v) = 0;
+            changed = true;
+          }
+        }
+    }
+  }
+
+  /// The set sub-cells as polygons (outer rings counter-clockwise, holes clockwise), the
+  /// tile's border taken as their outside; false if the rings could not be assembled.
+  bool polygons(std::vector<Polygon>& out) const {
+    // The boundary edge leaving each lattice vertex, with the set cells on its left: after
+    // separate_diagonals, at most one. 0: +x, 1: +y, 2: -x, 3: -y; 4: none.
+    const auto w = static_cast<std::size_t>(nu_ + 1);
+    std::vector<unsigned char> leaving(w * static_cast<std::size_t>(nv_ + 1), 4);
+    auto vertex = [&](int u, int v) -> unsigned char& {
+      return leaving[static_cast<std::size_t>(v) * w + static_cast<std::size_t>(u)];
+    };
+    bool ok = true;
+    auto put = [&](int u, int v, unsigned char dir) {
+      ok = ok && vertex(u, v) == 4;
+      vertex(u, v) = dir;
+    };
+    for (int v = 0; v < nv_; ++v)
+      for (int u = 0; u < nu_; ++u) {
+        if (!get(u, v)) continue;
+        if (v == 0 || !get(u, v - 1)) put(u, v, 0);
+        if (u + 1 == nu_ || !get(u + 1, v)) put(u + 1, v, 1);
+        if (v + 1 == nv_ || !get(u, v + 1)) put(u + 1, v + 1, 2);
+        if (u == 0 || !get(u - 1, v)) put(u, v + 1, 3);
+      }
+    if (!ok) return false;
+    static constexpr int kStep[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    std::vector<Ring> outers, holes;
+    for (int v0 = 0; v0 <= nv_; ++v0)
+      for (int u0 = 0; u0 <= nu_; ++u0) {
+        if (vertex(u0, v0) == 4) continue;
+        Ring ring;
+        int u = u0, v = v0, previous = -1;
+        for (;;) {
+          unsigned char& slot = vertex(u, v);
+          if (slot == 4) break;  // back at the start
+          const int dir = slot;
+          slot = 4;
+          if (dir != previous) ring.push_back(point(u, v));  // a corner
+          previous = dir;
+          u += kStep[dir][0];
+          v += kStep[dir][1];
+        }
+        if (u != u0 || v != v0 || ring.size() < 4) return false;
+        // The start may sit mid-edge when the walk began on a straight run: drop it.
+        if (leaving_direction_matches(ring)) ring.erase(ring.begin());
+        (signed_area2(ring) > 0 ? outers : holes).push_back(std::move(ring));
+      }
+    const std::size_t first = out.size();
+    for (Ring& r : outers) out.push_back({std::move(r), {}});
+    for (Ring& h : holes) {
+      // Each hole in the smallest outer ring around it (islands nest in holes).
+      std::size_t best = out.size();
+      double best_area = std::numeric_limits<double>::infinity();
+      for (std::size_t k = first; k < out.size(); ++k) {
+        const double a = signed_area2(out[k].outer);
+        if (a < best_area && inside_ring(out[k].outer, h.front())) best = k, best_area = a;
+      }
+      if (best == out.size()) return false;
+      out[best].holes.push_back(std::move(h));
+    }
+    return true;
+  }
+
+ private:
+  static std::vector<double> lines(double origin, int k0, int k1, double side, double epsilon) {
+    std::vector<double> out;
+    for (int k = k0; k < k1; ++k) {
+      const double lo = origin + k * side, hi = origin + (k + 1) * side;
+      out.insert(out.end(), {lo, lo + epsilon, hi - epsilon});
+    }
+    out.push_back(origin + k1 * side);
+    return out;
+  }
+  Vec2 point(int u, int v) const {
+    return {xs_[static_cast<std::size_t>(u)], ys_[static_cast<std::size_t>(v)]};
+  }
+  // True when the ring's first point lies on the straight line from its last to its second.
+  static bool leaving_direction_matches(const Ring& r) {
+    const Vec2 a = r.back(), b = r.front(), c = r[1];
+    return (a.x == b.x && b.x == c.x) || (a.y == b.y && b.y == c.y);
+  }
+  std::size_t index(int u, int v) const {
+    return static_cast<std::size_t>(v) * static_cast<std::size_t>(nu_) +
+           static_cast<std::size_t>(u);
+  }
+  bool get(int u, int v) const { return in_[index(u, v)] != 0; }
+  unsigned char& at(int u, int v) { return in_[index(u, v)]; }
+
+  const TerrainRaster& raster_;
+  int i0_, j0_, nu_, nv_;
+  std::vector<double> xs_, ys_;
+  std::vector<unsigned char> in_;
+};
+
+}  // namespace
+
+TerrainRaster terrain_raster(const Terrain& terrain, const Box2& area, double square) {
+  TerrainRaster r;
+  if (area.empty() || !(square > 0)) return r;
+  const double w = area.max.x - area.min.x, h = area.max.y - area.min.y;
+  double side = square;
+  while ((std::ceil(w / side) + 1) * (std::ceil(h / side) + 1) > kMaxSquares) side *= 1.25;
+  r.square = side;
+  r.columns = std::max(1, static_cast<int>(std::ceil(w / side)));
+  r.rows = std::max(1, static_cast<int>(std::ceil(h / side)));
+  r.area = {area.min, {area.min.x + r.columns * side, area.min.y + r.rows * side}};
+  const std::size_t count = static_cast<std::size_t>(r.columns) * static_cast<std::size_t>(r.rows);
+  r.lowest.assign(count, std::numeric_limits<double>::infinity());
+  std::vector<double> covered(count, 0.0);
+  auto column = [&](double x) { return static_cast<int>(std::floor((x - r.area.min.x) / side)); };
+  auto row = [&](double y) { return static_cast<int>(std::floor((y - r.area.min.y) / side)); };
+  for (const Triangle3& t : terrain.triangles) {
+    Box2 b;
+    for (const Vec3& v : t.v) b.extend(Vec2{v.x, v.y});
+    if (!b.overlaps(r.area)) continue;
+    // A triangle touching a square's side only still gives that side its heights.
+    const int i0 = std::max(0, column(b.min.x) - 1), i1 = std::min(r.columns - 1, column(b.max.x));
+    const int j0 = std::max(0, row(b.min.y) - 1), j1 = std::min(r.rows - 1, row(b.max.y));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Box2 cell{{r.area.min.x + i * side, r.area.min.y + j * side},
+                        {r.area.min.x + (i + 1) * side, r.area.min.y + (j + 1) * side}};
+        const ClipPolygon piece = clip_to_box(t, cell);
+        if (piece.n == 0) continue;
+        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(r.columns) +
+                              static_cast<std::size_t>(i);
+        for (int c = 0; c < piece.n; ++c)
+          r.lowest[k] = std::min(r.lowest[k], piece.p[static_cast<std::size_t>(c)].z);
+        covered[k] += area_of(piece);
+      }
+  }
+  // A square the TIN leaves partly open has no known ground there: it holds nothing up.
+  for (std::size_t k = 0; k < count; ++k)
+    if (covered[k] < kCovered * side * side) r.lowest[k] = -std::numeric_limits<double>::infinity();
+  return r;
+}
+
+std::vector<Occluder> terrain_occluders(const Terrain& terrain, const Box2& area, double step,
+                                        double epsilon) {
+  std::vector<Occluder> out;
+  if (terrain.empty() || area.empty() || !(step > 0) || !(epsilon > 0)) return out;
+  // Squares of 4ε: wider than 2ε, so the three columns of a square never overlap, and fine
+  // enough that the ε lost along a level's outline is a quarter of a square.
+  const TerrainRaster r = terrain_raster(terrain, area, 4 * epsilon);
+  if (r.columns == 0) return out;
+  const int tile = std::max(1, static_cast<int>(std::lround(kTileSide / r.square)));
+  for (int j0 = 0; j0 < r.rows; j0 += tile)
+    for (int i0 = 0; i0 < r.columns; i0 += tile) {
+      const int i1 = std::min(r.columns, i0 + tile), j1 = std::min(r.rows, j0 + tile);
+      // The levels that can differ in this tile: up to its highest square; below the lowest
+      // known square of the tile and its neighbours every level is the same set.
+      double high = -std::numeric_limits<double>::infinity();
+      double low = std::numeric_limits<double>::infinity();
+      for (int j = std::max(0, j0 - 1); j < std::min(r.rows, j1 + 1); ++j)
+        for (int i = std::max(0, i0 - 1); i < std::min(r.columns, i1 + 1); ++i) {
+          const double z = r.lowest_at(i, j);
+          if (z == -std::numeric_limits<double>::infinity()) continue;
+          if (i >= i0 && i < i1 && j >= j0 && j < j1) high = std::max(high, z);
+          low = std::min(low, z);
+        }
+      if (!(high > -std::numeric_limits<double>::infinity())) continue;
+      const auto k_high = static_cast<long long>(std::floor(high / step));
+      const auto k_low = static_cast<long long>(std::ceil(low / step));
+      TileMask mask(r, i0, i1, j0, j1, epsilon);
+      std::vector<unsigned char> above;  // the level above's cells: equal ones hide no more
+      for (long long k = k_high; k >= k_low; --k) {
+        const double h = static_cast<double>(k) * step;
+        if (!mask.erode(h) || mask.cells() == above) continue;
+        above = mask.cells();
+        const bool full = mask.full();
+        mask.separate_diagonals();
+        std::vector<Polygon> shapes;
+        // Rings that do not assemble are left out: an occluder may always be smaller.
+        if (mask.polygons(shapes))
+          for (Polygon& p : shapes) {
+            const Box2 box = bounds(p);
+            out.push_back({kTerrainBlock, h, std::move(p), box});
+          }
+        if (full) break;  // every lower level is this whole tile again
+      }
+    }
+  return out;
+}
+
+}  // namespace urbanpvs::geometry
