@@ -24,7 +24,7 @@ bool huge(std::size_t bytes) noexcept {
 }  // namespace
 
 void* allocate_large(std::size_t bytes) {
-  if (!huge(bytes)) return ::operator new(bytes);
+  if (!huge(bytes)) return ::operator new (bytes, std::align_val_t{kLargeAlignment});
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   // Whole huge pages, so the advice covers the buffer's end too; advised before anything
   // touches the memory, so its first faults already map huge pages.
@@ -40,7 +40,7 @@ void* allocate_large(std::size_t bytes) {
 
 void release_large(void* p, std::size_t bytes) noexcept {
   if (!huge(bytes)) {
-    ::operator delete(p);
+    ::operator delete (p, std::align_val_t{kLargeAlignment});
     return;
   }
   std::free(p);

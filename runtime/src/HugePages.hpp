@@ -20,6 +20,8 @@ namespace urbanpvs::runtime::detail {
 
 /// Allocations of at least this many bytes are aligned and advised as huge pages.
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
+/// Smaller ones are aligned to this: whole cache lines (GridBucket, PvsExpansion records).
+inline constexpr std::size_t kLargeAlignment = 64;
 
 /// `bytes` of storage (huge pages where the platform gives them); throws std::bad_alloc.
 void* allocate_large(std::size_t bytes);

@@ -76,6 +76,8 @@ Status load_sections(PvsFileData& file, const LoadOptions& options, LoadError& e
                 file.pvs, expansion, detail)) {
     return fail(error, Status::kMalformedSection, detail, SectionId::kPvs);
   }
+  if (expansion != nullptr) copy_shapes_into_records(file.cells, *expansion);
+  build_locate_index(file.grid, expansion, file.locate);
   if (const SectionInfo* s = c.major >= 2 ? find_section(c, SectionId::kPayloads) : nullptr) {
     const SectionBytesView view{file.data + s->offset, static_cast<std::size_t>(s->length),
                                 extension};

@@ -8,6 +8,7 @@
 
 #include "Container.hpp"
 #include "HugePages.hpp"
+#include "LocateIndex.hpp"
 #include "Sections.hpp"
 #include "urbanpvs/runtime/GeodeticFrame.hpp"
 
@@ -23,6 +24,7 @@ struct PvsFileData {
   ObjectsView objects;
   CellTable cells;
   GridIndex grid;
+  LocateIndex locate;  ///< the grid's lists as locate() reads them
   PvsView pvs;
   PayloadsView payloads;  ///< not present unless the file has a payloads section (2.1)
   PvsExpansion expanded;  ///< empty unless LoadOptions::expand_pvs

@@ -266,12 +266,22 @@ struct PvsValidation {
 
   /// Every list decoded into its place in cell order: full cells from their payload, diffs
   /// from their reference's place (filled before them: parents first). Only after check_all.
-  bool expand(PvsExpansion& e, std::uint64_t total, const char*& detail) {
+  bool expand(PvsExpansion& e, const char*& detail) {
     const std::size_t n = reference.size();
     e.offsets.resize(n + 1);
-    e.offsets[0] = 0;
-    for (std::uint32_t c = 0; c < n; ++c) e.offsets[c + 1] = e.offsets[c] + count[c];
-    e.ids.resize(static_cast<std::size_t>(total));
+    std::uint64_t at = 0;  // words; counts are at most object_count, so no overflow
+    for (std::uint32_t c = 0; c < n; ++c) {
+      e.offsets[c] = at + PvsExpansion::kHeaderWords;
+      const std::uint64_t words = PvsExpansion::kHeaderWords + count[c];
+      at += (words + PvsExpansion::kRecordWords - 1) / PvsExpansion::kRecordWords *
+            PvsExpansion::kRecordWords;
+    }
+    e.offsets[n] = at;
+    e.ids.assign(static_cast<std::size_t>(at), 0);  // the shapes are copied in by the loader
+    for (std::uint32_t c = 0; c < n; ++c) {
+      e.ids[static_cast<std::size_t>(e.offsets[c]) - 2] = c;
+      e.ids[static_cast<std::size_t>(e.offsets[c]) - 1] = count[c];
+    }
     for (std::uint32_t cell = 0; cell < n; ++cell) {
       if (reference[cell] != kNoCell) continue;
       std::size_t got = 0;
@@ -285,9 +295,7 @@ struct PvsValidation {
     return true;
   }
 
-  static std::size_t size(const PvsExpansion& e, std::uint32_t cell) {
-    return static_cast<std::size_t>(e.offsets[cell + 1] - e.offsets[cell]);
-  }
+  static std::size_t size(const PvsExpansion& e, std::uint32_t cell) { return e.size(cell); }
 
   bool expand_children(PvsExpansion& e, std::uint32_t cell) {
     for (std::uint32_t k = first_child[cell]; k < first_child[cell + 1]; ++k) {
@@ -449,7 +457,7 @@ bool read_pvs(const SectionBytesView& in, std::uint32_t cell_count, std::uint32_
   }
   out.max_chain = v.deepest;
   // Only now are the counts (and so their total) known to be true: allocate and fill.
-  if (expansion != nullptr && !v.expand(*expansion, out.total_entries, detail)) return false;
+  if (expansion != nullptr && !v.expand(*expansion, detail)) return false;
   return true;
 }
 

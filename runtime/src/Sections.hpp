@@ -123,13 +123,28 @@ using Neighbours = std::array<std::uint32_t, 3>;
 std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
                                      const std::vector<Neighbours>& neighbours,
                                      const EncodeOptions& options, bool coded);
-/// Every cell's PVS decoded into one array (LoadOptions::expand_pvs): cell c is
-/// `ids[offsets[c], offsets[c + 1])`.
+/// Every cell's PVS decoded into one array (LoadOptions::expand_pvs), a record per cell, each
+/// starting on a 64-byte boundary of `ids`: the cell's CellShape (kShapeWords), its index, its
+/// PVS size, the sorted ids, then padding to a whole number of kRecordWords. A random locate
+/// reads the shape and the found cell's first ids from the same lines, fetched at once
+/// (LocateIndex.hpp). `offsets[c]` is where cell c's ids begin; offsets[cell_count] is the
+/// array's size.
 struct PvsExpansion {
+  static constexpr std::size_t kRecordWords = 16;  ///< 64 bytes
+  static constexpr std::size_t kShapeWords = 16;   ///< sizeof(CellShape) / 4
+  static constexpr std::size_t kHeaderWords = kShapeWords + 2;
   LargeVector<std::uint32_t> ids;
   LargeVector<std::uint64_t> offsets;
   bool empty() const noexcept { return offsets.empty(); }
+  std::uint32_t size(std::uint32_t cell) const noexcept {
+    return ids[static_cast<std::size_t>(offsets[cell]) - 1];
+  }
+  /// Where cell c's record begins, in records (64-byte units).
+  std::uint64_t record(std::uint32_t cell) const noexcept {
+    return (offsets[cell] - kHeaderWords) / kRecordWords;
+  }
 };
+static_assert(sizeof(CellShape) == 4 * PvsExpansion::kShapeWords);
 /// Decodes every cell once: sorted, in range, counts consistent, chains within bounds. When
 /// `expansion` is given, keeps the decoded lists there.
 /// `coded`: the file sets format::kFeatureCodedPvs, and `neighbours` (cell_count entries, the

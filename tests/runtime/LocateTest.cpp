@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
 
 #include "RandomBake.hpp"
 #include "urbanpvs/runtime/PvsFile.hpp"
@@ -44,18 +45,24 @@ rt::PvsBake stored(rt::PvsBake bake, const rt::PvsFile& file) {
   return bake;
 }
 
-rt::PvsFile open(const std::vector<std::byte>& bytes) {
-  rt::PvsFile file;
-  EXPECT_EQ(rt::PvsFile::open(bytes.data(), bytes.size(), file), rt::Status::kOk);
-  return file;
-}
+/// A format version, and whether the file is loaded with its PVSs expanded: locate() then reads
+/// the shapes from the expanded records instead of the cell table (LocateIndex.hpp).
+using Params = std::tuple<std::uint16_t, bool>;
 
-class Locate : public ::testing::TestWithParam<std::uint16_t> {
+class Locate : public ::testing::TestWithParam<Params> {
  protected:
   rt::EncodeOptions options() const {
     rt::EncodeOptions e;
-    e.format_major = GetParam();
+    e.format_major = std::get<0>(GetParam());
     return e;
+  }
+  rt::PvsFile open(const std::vector<std::byte>& bytes) const {
+    rt::LoadOptions load;
+    load.expand_pvs = std::get<1>(GetParam());
+    rt::PvsFile file;
+    EXPECT_EQ(rt::PvsFile::open(bytes.data(), bytes.size(), file, load), rt::Status::kOk);
+    EXPECT_EQ(file.is_expanded(), load.expand_pvs);
+    return file;
   }
 };
 
@@ -149,7 +156,11 @@ TEST_P(Locate, NonFiniteAndFarPointsAreOutside) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryVersion, Locate,
-                         ::testing::Values(std::uint16_t{1}, std::uint16_t{2}),
-                         [](const auto& p) { return "v" + std::to_string(p.param); });
+                         ::testing::Combine(::testing::Values(std::uint16_t{1}, std::uint16_t{2}),
+                                            ::testing::Bool()),
+                         [](const auto& p) {
+                           return "v" + std::to_string(std::get<0>(p.param)) +
+                                  (std::get<1>(p.param) ? "_expanded" : "");
+                         });
 
 }  // namespace

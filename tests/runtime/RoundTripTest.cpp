@@ -16,10 +16,12 @@ using urbanpvs::test::random_mesh_bake;
 using urbanpvs::test::RandomBakeOptions;
 
 /// Opens a copy of `bytes` owned by the file (so temporaries can be passed).
-rt::PvsFile open_ok(std::vector<std::byte> bytes) {
+rt::PvsFile open_ok(std::vector<std::byte> bytes, bool expand = false) {
   rt::PvsFile file;
   rt::LoadError error;
-  const rt::Status s = rt::PvsFile::open_owned(std::move(bytes), file, {}, &error);
+  rt::LoadOptions options;
+  options.expand_pvs = expand;
+  const rt::Status s = rt::PvsFile::open_owned(std::move(bytes), file, options, &error);
   EXPECT_EQ(s, rt::Status::kOk) << error.detail;
   return file;
 }
@@ -223,10 +225,13 @@ TEST(RoundTrip, RandomBakesManySeedsAndOptions) {
       const rt::PvsBake bake = random_mesh_bake(seed * 131 + v, o);
       const auto bytes = rt::encode(bake, all[v].encode);
       EXPECT_EQ(bytes, rt::encode(bake, all[v].encode)) << "encode is not deterministic";
-      const rt::PvsFile file = open_ok(bytes);
-      expect_same(bake, file, all[v].encode);
-      if (bake.objects.size() < 1000) expect_visibility_matches(bake, file);
-      ASSERT_FALSE(HasFailure());
+      for (const bool expand : {false, true}) {  // decoded, and from the expanded records
+        const rt::PvsFile file = open_ok(bytes, expand);
+        ASSERT_EQ(file.is_expanded(), expand);
+        expect_same(bake, file, all[v].encode);
+        if (bake.objects.size() < 1000) expect_visibility_matches(bake, file);
+        ASSERT_FALSE(HasFailure());
+      }
     }
   }
 }
