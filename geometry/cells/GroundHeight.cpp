@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "BoxGrid.hpp"
+#include "urbanpvs/geometry/city/ConvexClip.hpp"
 
 namespace urbanpvs::geometry {
 namespace {
@@ -54,12 +55,9 @@ std::vector<Vec2> clip_triangle(const std::array<Vec2, 3>& t, const Tri& tin) {
     const Vec2 a = tin.p[k], b = tin.p[(k + 1) % 3];
     auto side = [&](Vec2 q) { return orient * cross(b - a, q - a); };
     next.clear();
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
-      const double sp = side(p), sq = side(q);
-      if (sp >= 0) next.push_back(p);
-      if ((sp >= 0) != (sq >= 0)) next.push_back(p + (sp / (sp - sq)) * (q - p));
-    }
+    clip_convex(poly, next, side, [](Vec2 p, Vec2 q, double sp, double sq) {
+      return p + (sp / (sp - sq)) * (q - p);
+    });
     poly.swap(next);
   }
   return poly;

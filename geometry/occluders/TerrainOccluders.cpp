@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "urbanpvs/geometry/city/ConvexClip.hpp"
+
 namespace urbanpvs::geometry {
 namespace {
 
@@ -25,30 +27,26 @@ struct Point3 {
 struct ClipPolygon {
   std::array<Point3, 8> p{};
   int n = 0;
+  std::size_t size() const { return static_cast<std::size_t>(n); }
+  const Point3& operator[](std::size_t k) const { return p[k]; }
+  void push_back(const Point3& q) { p[static_cast<std::size_t>(n++)] = q; }
 };
 
-// One Sutherland-Hodgman step: keeps the part where `d(p) >= 0` (d affine in x, y), the height
-// interpolated along each cut edge, so every corner of the result lies on the triangle.
+// Keeps the part where `d(p) >= 0` (d affine in x, y), the height interpolated along each cut
+// edge, so every corner of the result lies on the triangle.
 template <class Distance>
 ClipPolygon clip(const ClipPolygon& in, Distance d) {
   ClipPolygon out;
-  for (int k = 0; k < in.n; ++k) {
-    const Point3 a = in.p[static_cast<std::size_t>(k)];
-    const Point3 b = in.p[static_cast<std::size_t>((k + 1) % in.n)];
-    const double da = d(a), db = d(b);
-    if (da >= 0) out.p[static_cast<std::size_t>(out.n++)] = a;
-    if ((da >= 0) != (db >= 0)) {
-      const double t = da / (da - db);
-      out.p[static_cast<std::size_t>(out.n++)] = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y),
-                                                  a.z + t * (b.z - a.z)};
-    }
-  }
+  geometry::clip_convex(in, out, d, [](const Point3& a, const Point3& b, double da, double db) {
+    const double t = da / (da - db);
+    return Point3{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+  });
   return out;
 }
 
 ClipPolygon clip_to_box(const Triangle3& t, const Box2& box) {
   ClipPolygon p;
-  for (const Vec3& v : t.v) p.p[static_cast<std::size_t>(p.n++)] = {v.x, v.y, v.z};
+  for (const Vec3& v : t.v) p.push_back({v.x, v.y, v.z});
   p = clip(p, [&](const Point3& q) { return q.x - box.min.x; });
   p = clip(p, [&](const Point3& q) { return box.max.x - q.x; });
   p = clip(p, [&](const Point3& q) { return q.y - box.min.y; });

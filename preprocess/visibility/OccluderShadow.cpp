@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "urbanpvs/geometry/city/ConvexClip.hpp"
+
 namespace urbanpvs::preprocess {
 namespace {
 
@@ -15,34 +17,28 @@ double signed_area2(const ShadowPolygon& p) {
   return a;
 }
 
-// Keeps the part of a convex polygon where `inside` holds (one Sutherland-Hodgman step).
-template <class Inside, class Cut>
-ShadowPolygon clip_half_plane(const ShadowPolygon& poly, Inside inside, Cut cut) {
-  ShadowPolygon out;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
-    const bool pin = inside(p), qin = inside(q);
-    if (pin) out.push_back(p);
-    if (pin != qin) out.push_back(cut(p, q));
-  }
-  return out;
-}
-
+// The part of a convex polygon inside `box`. A cut point lies exactly on the box's side (its
+// other coordinate interpolated): the rasterizer's rows and columns start there.
 ShadowPolygon clip_to_box(ShadowPolygon poly, const Box2& box) {
   auto at_x = [](double x) {
-    return [x](Vec2 p, Vec2 q) { return Vec2{x, p.y + (q.y - p.y) * (x - p.x) / (q.x - p.x)}; };
+    return [x](Vec2 p, Vec2 q, double, double) {
+      return Vec2{x, p.y + (q.y - p.y) * (x - p.x) / (q.x - p.x)};
+    };
   };
   auto at_y = [](double y) {
-    return [y](Vec2 p, Vec2 q) { return Vec2{p.x + (q.x - p.x) * (y - p.y) / (q.y - p.y), y}; };
+    return [y](Vec2 p, Vec2 q, double, double) {
+      return Vec2{p.x + (q.x - p.x) * (y - p.y) / (q.y - p.y), y};
+    };
   };
-  poly = clip_half_plane(
-      poly, [&](Vec2 p) { return p.x >= box.min.x; }, at_x(box.min.x));
-  poly = clip_half_plane(
-      poly, [&](Vec2 p) { return p.x <= box.max.x; }, at_x(box.max.x));
-  poly = clip_half_plane(
-      poly, [&](Vec2 p) { return p.y >= box.min.y; }, at_y(box.min.y));
-  poly = clip_half_plane(
-      poly, [&](Vec2 p) { return p.y <= box.max.y; }, at_y(box.max.y));
+  auto keep = [&poly](auto side, auto cut) {
+    ShadowPolygon out;
+    geometry::clip_convex(poly, out, side, cut);
+    poly = out;
+  };
+  keep([&](Vec2 p) { return p.x - box.min.x; }, at_x(box.min.x));
+  keep([&](Vec2 p) { return box.max.x - p.x; }, at_x(box.max.x));
+  keep([&](Vec2 p) { return p.y - box.min.y; }, at_y(box.min.y));
+  keep([&](Vec2 p) { return box.max.y - p.y; }, at_y(box.max.y));
   return poly;
 }
 

@@ -299,9 +299,10 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     auto along = [&](Vec2 u) { return num / geometry::cross(u, e); };
     // The wall's ends: where the rays towards them cross it is the ends themselves, so their
     // distances need no direction (cos, sin) and no division.
-    const bool p_first = angle(k) <= angle(k + 1);
-    const double a_lo = p_first ? angle(k) : angle(k + 1);
-    const double a_hi = p_first ? angle(k + 1) : angle(k);
+    const double a_p = angle(k), a_q = angle(k + 1);
+    const bool p_first = a_p <= a_q;
+    const double a_lo = p_first ? a_p : a_q;
+    const double a_hi = p_first ? a_q : a_p;
     const double at_lo = vertex_distance_[(p_first ? k : k + 1) % n];
     const double at_hi = vertex_distance_[(p_first ? k + 1 : k) % n];
     const auto u0 = std::max(t0, static_cast<long long>(std::floor(a_lo / kSector)));

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "SharedCities.hpp"
+#include "TextFile.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 
@@ -28,12 +29,7 @@ namespace {
 using namespace urbanpvs::geometry;
 using Json = nlohmann::ordered_json;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using urbanpvs::test::read_text;
 
 // The vertex indices of `boundaries` renumbered from 0 in order of first use, the used
 // vertices appended to `vertices` in that order.

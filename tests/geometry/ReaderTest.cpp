@@ -32,6 +32,7 @@
 #endif
 
 #include "SharedCities.hpp"
+#include "TextFile.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
@@ -48,12 +49,7 @@ using Json = nlohmann::ordered_json;
 const fs::path kTestData = URBANPVS_TEST_DATA;
 using urbanpvs::test::kSharedCities;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using urbanpvs::test::read_text;
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
