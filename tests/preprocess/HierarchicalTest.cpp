@@ -148,7 +148,7 @@ TEST(Hierarchical, SampleHorizonsAloneStayASupersetOfTheBruteForcePvs) {
 TEST(Hierarchical, WithNoOccluderLeftEveryCellSeesEveryObject) {
   // Two kiosks 1.5 m square and 10 m high, 300 m apart, nothing between them. Shrunk by ε = 1 m
   // (thesis 7.2) neither leaves an occluder, so no wall casts a shadow (thesis 4.2.1) and every
-  // cell sees both. The first map (128 pixels, 178 m) around a cell holds one kiosk at most: the
+  // cell sees both. The first map (32 pixels, 45 m) around a cell holds one kiosk at most: the
   // other is left to the sample horizons, which must find nothing to hide it with.
   const std::string text = R"({"type":"FeatureCollection","features":[
     {"type":"Feature","id":"a","properties":{"height":10},"geometry":{"type":"Polygon",
