@@ -13,7 +13,8 @@ namespace {
 
 // 4M squares (32 MB of heights): a 4 km city at the default 4 m, a larger one on coarser ones.
 constexpr double kMaxSquares = 4.0e6;
-// A tile holds about this much ground: a cell's first map (128 pixels of 1.4 m) meets a few.
+// A tile holds about this much ground: a cell's map (32 pixels of 1.4 m: 45 m) meets one to
+// four of them, and clips only their edges.
 constexpr double kTileSide = 128;  // [Units: m]
 // A square counts as covered when the TIN's pieces in it fill this share of it: what is left
 // is the rounding of the clipped areas.

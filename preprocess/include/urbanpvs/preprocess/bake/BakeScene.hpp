@@ -33,7 +33,7 @@ struct BakeOptions {
   /// Side of the first cull map of the hierarchical test [Units: pixels] [Limit: 8 .. 65536].
   /// 32 pixels (45 m at the default pixel) hold an 18 m cell with room around it; beyond them
   /// the samples' horizons judge as the map would, at a fraction of its cost (README,
-  /// "Near: cull maps": 128-pixel maps took 1.4-3.7x the time for the same PVS).
+  /// "Smaller maps": 128-pixel maps took 1.06-3.7x the time for the same mean PVS).
   int initial_map = 32;
   /// Largest cull map side [Units: pixels] [Limit: initial_map .. 65536]. Maps grow ×2 up to
   /// it; what is still undecided beyond it is decided by the samples' horizons (SampleHorizon),
