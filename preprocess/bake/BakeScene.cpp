@@ -7,6 +7,7 @@
 #include <string>
 
 #include "urbanpvs/geometry/city/ObjectOutline.hpp"
+#include "urbanpvs/geometry/occluders/InwardSimplification.hpp"
 #include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
@@ -95,6 +96,17 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   for (const geometry::CityObject& o : city.objects)
     object_outlines_.push_back(geometry::object_outline(o));
   occluder_index_ = BoxQuadtree(occluder_boxes(occluders_));
+  // Far outlines: the occluders with corners cut inwards, for the horizons (thesis 5.6) only;
+  // the cull maps and the exact sight lines keep every wall.
+  if (const double t = options_.far_outline_tolerance; t > 0) {
+    far_outline_distance_ = BakeOptions::kFarOutlineRatio * t;
+    far_occluders_.reserve(occluders_.size());
+    for (const geometry::Occluder& o : occluders_) {
+      geometry::Occluder far = o;
+      far.shape = geometry::simplified_inward(o.shape, t);
+      far_occluders_.push_back(std::move(far));
+    }
+  }
 }
 
 std::vector<Vec3> BakeScene::samples(std::uint32_t cell) const {

@@ -280,7 +280,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
                  static_cast<std::uint32_t>(child));
       } else if (e.kind == kOccluder) {
         if (h.hides(tree.box(e.id))) continue;
-        h.add(scene_.occluders()[e.id]);
+        h.add(scene_.horizon_occluder(e.id, e.distance));
         ++c.occluders_far_field;
       } else if (e.kind == kObjectNode) {
         if (open_below_[e.id] == 0 || h.hides_as_is(node_box(e.id))) continue;

@@ -290,6 +290,11 @@ TEST(BakeSettings, TheFilesPropertiesGiveBackTheBakeOptions) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), "the file has no property " + stored.front().first);
   }
+  // A file from before --far-outline-tolerance was baked with exact outlines.
+  auto older = stored;
+  std::erase_if(older, [](const auto& p) { return p.first == "far_outline_tolerance_m"; });
+  ASSERT_EQ(older.size() + 1, stored.size());
+  EXPECT_EQ(bake_options_from_properties(older).far_outline_tolerance, 0.0);
   auto garbled = stored;
   const auto epsilon = std::find_if(garbled.begin(), garbled.end(),
                                     [](const auto& p) { return p.first == "epsilon_m"; });

@@ -7,6 +7,9 @@
 // districts of objects are tested at once (the object quadtree), and the sweep of a sample
 // stops when every open object has been met. Pixel centres the horizon's sectors cannot decide
 // are traced exactly (SightLine), so the far field never hides what the brute-force map shows.
+// Occluders far from a sample enter its horizon by their far outlines (BakeScene::
+// horizon_occluder: a polygon inside each, with fewer walls); a part of an occluder hides no
+// more than the whole, and the sight lines keep every wall.
 #pragma once
 
 #include <cstdint>
