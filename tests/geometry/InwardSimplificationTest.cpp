@@ -169,6 +169,19 @@ TEST(InwardSimplification, ConcaveCornerIsNeverCut) {
   EXPECT_NE(std::find(out.outer.begin(), out.outer.end(), Vec2{4, 4}), out.outer.end());
 }
 
+TEST(InwardSimplification, LongStraightWallsOfManyVertices) {
+  // A 5,000 m by 10 m strip drawn with 2,000 vertices on each long wall: a chord replaces at
+  // most 64 of them (which keeps each cut's work bounded), so the walls keep about one in 65.
+  Ring ring;
+  for (int k = 0; k < 2000; ++k) ring.push_back({2.5 * k, 0});
+  for (int k = 0; k < 2000; ++k) ring.push_back({5000 - 2.5 * k, 10});
+  std::mt19937_64 rng(19);
+  Polygon out;
+  check(Polygon{ring, {}}, 1, rng, "strip", out);
+  EXPECT_LE(out.outer.size(), 2 * (2000 / 64 + 2));
+  EXPECT_GE(out.outer.size(), 2 * (2000 / 65));
+}
+
 TEST(InwardSimplification, NoCutPastAnotherRing) {
   // The top wall bulges 0.3 m at (20, 40.3), and a hole reaches up to (20, 40.1) under it:
   // cutting the bulge would leave that corner of the hole outside the polygon.

@@ -14,11 +14,11 @@ namespace urbanpvs::geometry {
 /// `polygon` (outer ring counter-clockwise, holes clockwise, every ring simple) with corners
 /// cut off while that keeps it inside `polygon`: a vertex goes when it is a convex corner of the
 /// solid (or on a straight line), the triangle it cuts off holds no other vertex of any ring,
-/// and every input vertex the new chord replaces (this corner and those cut before it there)
-/// lies within `tolerance` (m) of the chord's line. So the result keeps every ring, each simple
-/// with at least three of its input vertices in order, lies inside `polygon`, and no input
-/// boundary it cut away is farther than `tolerance` from it. Concave corners are never cut: that
-/// would grow the solid.
+/// and every input vertex the new chord replaces (this corner and those cut before it there,
+/// at most 64) lies within `tolerance` (m) of the chord's line. So the result keeps every ring,
+/// each simple with at least three of its input vertices in order, lies inside `polygon`, and no
+/// input boundary it cut away is farther than `tolerance` from it. Concave corners are never cut:
+/// that would grow the solid.
 Polygon simplified_inward(const Polygon& polygon, double tolerance);
 
 }  // namespace urbanpvs::geometry
