@@ -101,11 +101,9 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   if (const double t = options_.far_outline_tolerance; t > 0) {
     far_outline_distance_ = BakeOptions::kFarOutlineRatio * t;
     far_occluders_.reserve(occluders_.size());
-    for (const geometry::Occluder& o : occluders_) {
-      geometry::Occluder far = o;
-      far.shape = geometry::simplified_inward(o.shape, t);
-      far_occluders_.push_back(std::move(far));
-    }
+    for (const geometry::Occluder& o : occluders_)
+      far_occluders_.push_back({o.block, o.top_z, geometry::simplified_inward(o.shape, t),
+                                o.bounds});  // the outline's bounds still hold the far one
   }
 }
 

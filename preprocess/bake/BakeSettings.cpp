@@ -68,13 +68,15 @@ std::vector<Setting> make_table() {
       "Largest cull map (at least --initial-map); beyond it the samples' horizons decide "
       "(65536: cull maps alone, grown to cover the city)",
       [](R& r) -> int& { return r.bake.max_map; }));
-  t.push_back(geometry::number_setting<R>(
+  Setting far_outlines = geometry::number_setting<R>(
       "far-outline-tolerance", "m", S::Visibility, 0, 10,
       "From " + std::to_string(BakeOptions::kFarOutlineRatio) +
           " times this distance on, the samples' horizons take each occluder by its outline "
           "with corners cut inwards by up to this: fewer walls, never a larger occluder (0: "
           "exact outlines)",
-      [](R& r) -> double& { return r.bake.far_outline_tolerance; }));
+      [](R& r) -> double& { return r.bake.far_outline_tolerance; });
+  far_outlines.value_before_it = "0";  // files of before 2026-12-04 used exact outlines
+  t.push_back(std::move(far_outlines));
   // ---- the run and the file (no effect on the PVS) ----
   t.push_back(geometry::choice_setting<runtime::PvsCoding, R>(
       "pvs-coding", S::Run, {"varint", "exp-golomb"},
@@ -125,24 +127,16 @@ std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptio
 
 BakeOptions bake_options_from_properties(
     const std::vector<std::pair<std::string, std::string>>& properties) {
-  // Settings newer than some files, with the value that files baked before them were baked
-  // with: a file without the property is read as that bake.
-  static const std::vector<std::pair<std::string, std::string>> kBeforeTheSetting = {
-      {"far_outline_tolerance_m", "0"},  // exact outlines before 2026-12-04
-  };
   PreprocessRequest r;
   for (const auto& [key, unused] : bake_properties(r.bake)) {
-    auto stored = std::find_if(properties.begin(), properties.end(),
-                               [&](const auto& p) { return p.first == key; });
-    if (stored == properties.end()) {
-      stored = std::find_if(kBeforeTheSetting.begin(), kBeforeTheSetting.end(),
-                            [&](const auto& p) { return p.first == key; });
-      if (stored == kBeforeTheSetting.end())
-        throw std::invalid_argument("the file has no property " + key);
-    }
+    const auto stored = std::find_if(properties.begin(), properties.end(),
+                                     [&](const auto& p) { return p.first == key; });
     const auto setting = std::find_if(bake_settings().begin(), bake_settings().end(),
                                       [&](const Setting& s) { return s.property_key() == key; });
-    setting->set(r, stored->second);
+    // A file older than the setting was made with the value it had before it existed.
+    if (stored == properties.end() && setting->value_before_it.empty())
+      throw std::invalid_argument("the file has no property " + key);
+    setting->set(r, stored != properties.end() ? stored->second : setting->value_before_it);
   }
   return r.bake;
 }

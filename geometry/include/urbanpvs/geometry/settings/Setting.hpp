@@ -57,6 +57,9 @@ struct Setting {
   std::string short_name;
   /// Path: the file must exist when the command line is read (an input, not an output).
   bool existing_file = false;
+  /// A result setting newer than some files: the value those files were made with, read for a
+  /// file that has no property for it (empty: such a file is refused).
+  std::string value_before_it;
   /// The value as text: exact (the shortest text that reads back to the same double).
   std::function<std::string(const Target&)> get;
   /// Sets the value from text (as given on the command line or converted from JSON). Throws
@@ -272,6 +275,7 @@ Setting<Outer> lift(const Setting<Inner>& s, std::function<Inner&(Outer&)> part)
   out.default_text = s.default_text;
   out.short_name = s.short_name;
   out.existing_file = s.existing_file;
+  out.value_before_it = s.value_before_it;
   out.get = [get = s.get, part](const Outer& o) { return get(part(const_cast<Outer&>(o))); };
   out.set = [set = s.set, part](Outer& o, const std::string& text) { set(part(o), text); };
   return out;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,8 +71,7 @@ class BakeScene {
   /// BakeOptions::kFarOutlineRatio × far_outline_tolerance on, with its outline simplified
   /// inwards (a polygon inside the occluder, fewer walls to add); nearer, the occluder itself.
   const geometry::Occluder& horizon_occluder(std::uint32_t id, double distance) const {
-    return distance >= far_outline_distance_ && !far_occluders_.empty() ? far_occluders_[id]
-                                                                        : occluders_[id];
+    return distance >= far_outline_distance_ ? far_occluders_[id] : occluders_[id];
   }
   const geometry::ViewCellMesh& mesh() const { return mesh_; }
   std::size_t cell_count() const { return mesh_.cells.size(); }
@@ -103,7 +103,8 @@ class BakeScene {
   std::vector<geometry::Block> blocks_;
   std::vector<geometry::Occluder> occluders_;
   std::vector<geometry::Occluder> far_occluders_;  ///< same order; empty: tolerance 0
-  double far_outline_distance_ = 0;
+  /// From here on the horizons take far_occluders_ (infinity: tolerance 0, none built).
+  double far_outline_distance_ = std::numeric_limits<double>::infinity();
   geometry::ViewCellMesh mesh_;
   CullMapGrid area_;
   double zlo_ = 0, zhi_ = 0;
