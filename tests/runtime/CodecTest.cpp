@@ -106,6 +106,73 @@ TEST(ExpGolomb, ReaderNeverReadsPastItsBytes) {
   EXPECT_FALSE(r.code(0, g));
 }
 
+// The code as ExpGolomb.hpp defines it, read one bit at a time: the reference the reader's
+// windowed decoding must agree with, value for value and failure for failure.
+class BitByBitReader {
+ public:
+  BitByBitReader(const unsigned char* data, std::size_t size) : data_(data), bits_(size * 8) {}
+  std::uint64_t position() const { return position_; }
+  bool code(unsigned k, std::uint64_t& gap) {
+    std::uint64_t at = position_;
+    unsigned zeros = 0;
+    for (;; ++zeros) {
+      if (at >= bits_ || zeros + k > 32) return false;  // past the end, or v >= 2^34
+      if (bit(at++)) break;
+    }
+    const unsigned low = zeros + k;
+    if (at + low > bits_) return false;
+    std::uint64_t v = std::uint64_t{1} << low;
+    for (unsigned i = 0; i < low; ++i) v |= std::uint64_t{bit(at + i)} << i;
+    position_ = at + low;
+    gap = v - (std::uint64_t{1} << k);
+    return true;
+  }
+
+ private:
+  unsigned bit(std::uint64_t at) const { return (data_[at / 8] >> (at % 8)) & 1u; }
+  const unsigned char* data_;
+  std::uint64_t bits_;
+  std::uint64_t position_ = 0;
+};
+
+TEST(ExpGolomb, ReaderAgreesWithABitByBitDecoderOnAnyBytes) {
+  // Random bytes: dense ones give runs of short codes (the reader's fast path, across the ends
+  // of its window), sparse ones long codes and codes that fail; the reader may look at bytes
+  // past the stream (readable > size) but a code ending there must fail as it does here.
+  std::mt19937_64 rng(29);
+  std::uint64_t codes = 0, failures = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const std::size_t size = rng() % 48;
+    const std::size_t readable = size + (trial % 2 == 0 ? 0 : rng() % 12);
+    const unsigned density = 1 + static_cast<unsigned>(rng() % 8);  // ones per 8 bits, about
+    std::unique_ptr<unsigned char[]> bytes(new unsigned char[std::max<std::size_t>(readable, 1)]);
+    for (std::size_t i = 0; i < readable; ++i) {
+      unsigned b = 0;
+      for (unsigned j = 0; j < 8; ++j) b |= (rng() % 8 < density ? 1u : 0u) << j;
+      bytes[i] = static_cast<unsigned char>(b);
+    }
+    detail::BitReader reader(bytes.get(), size, readable);
+    BitByBitReader reference(bytes.get(), size);
+    for (;;) {
+      // Mostly small orders, as the writer picks; now and then one up to the largest.
+      const unsigned k =
+          rng() % 16 == 0 ? static_cast<unsigned>(rng() % 32) : static_cast<unsigned>(rng() % 4);
+      std::uint64_t got = 0, want = 0;
+      const bool ok = reader.code(k, got);
+      ASSERT_EQ(ok, reference.code(k, want)) << "trial " << trial << " bit " << reader.position();
+      if (!ok) {
+        ++failures;
+        break;
+      }
+      ++codes;
+      ASSERT_EQ(got, want) << "trial " << trial;
+      ASSERT_EQ(reader.position(), reference.position()) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(codes, 50000u);  // the fast path was exercised, and failures too
+  EXPECT_EQ(failures, 4000u);
+}
+
 TEST(ExpGolomb, BestOrderReportsItsOwnSize) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 500; ++trial) {
