@@ -12,6 +12,8 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev
   # OpenStreetMap input (PBF and XML)
   libosmium2-dev
+  # CityGML input (streaming XML parser; libosmium's XML reader uses it too)
+  libexpat1-dev
   # terrain: DEMs (GeoTIFF, SRTM .hgt) read and reprojected with GDAL (--terrain)
   libgdal-dev
   # coordinates: WGS84 lon/lat -> local metric frame

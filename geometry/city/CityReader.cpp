@@ -121,6 +121,7 @@ using detail::Json;
 enum class Format { CityJson, GeoJson };
 
 Json parse(std::string_view text, const std::string& name) {
+  if (detail::is_xml(text)) return detail::citygml_to_cityjson(text, name);
   if (std::optional<Json> joined = detail::join_json_sequence(text, name))
     return std::move(*joined);
   try {

@@ -45,6 +45,14 @@ std::string json_error_text(const nlohmann::json::exception& e);
 /// item that is no JSON or not of the sequence's kind.
 std::optional<Json> join_json_sequence(std::string_view text, const std::string& file);
 
+/// True when `text` is XML: its first character other than a byte order mark or white space
+/// is '<'.
+bool is_xml(std::string_view text);
+/// A CityGML file's buildings and building parts as a CityJSON document (CityGmlReader.cpp);
+/// throws InputError: InvalidXml (line and column) for malformed XML, BadStructure for a
+/// coordinate list that is no list of 2D or 3D points.
+Json citygml_to_cityjson(std::string_view text, const std::string& file);
+
 InputScan scan_cityjson(const Json& doc, const std::string& file);
 void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
                    const ReadOptions& options, City& city);

@@ -23,6 +23,8 @@ const char* to_string(InputProblem p) {
       return "unsupported format";
     case InputProblem::Implausible:
       return "implausible input";
+    case InputProblem::InvalidXml:
+      return "invalid XML";
   }
   return "input error";
 }

@@ -83,7 +83,8 @@ std::optional<InputProblem> problem_named(const std::string& name) {
       {"MissingHeight", InputProblem::MissingHeight},
       {"EmptyCity", InputProblem::EmptyCity},
       {"UnsupportedFormat", InputProblem::UnsupportedFormat},
-      {"Implausible", InputProblem::Implausible}};
+      {"Implausible", InputProblem::Implausible},
+      {"InvalidXml", InputProblem::InvalidXml}};
   auto it = names.find(name);
   return it == names.end() ? std::nullopt : std::optional<InputProblem>(it->second);
 }

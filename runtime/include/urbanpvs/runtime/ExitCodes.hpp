@@ -17,9 +17,9 @@ inline constexpr int kBadQuery = 3;  ///< urbanpvs-inspect: a cell or point the 
 inline constexpr int kProcessing = 4;  ///< the work itself failed (out of memory included)
 inline constexpr int kOutput = 5;  ///< an output cannot be written; nothing half-written is left
 
-/// 10-18: a city input file (geometry::InputProblem, whose values are these codes).
+/// 10-19: a city input file (geometry::InputProblem, whose values are these codes).
 inline constexpr int kCityInputFirst = 10;
-inline constexpr int kCityInputLast = 18;
+inline constexpr int kCityInputLast = 19;
 
 inline constexpr int kFileUnreadable = 20;  ///< another input (a .pvs, a points file) unreadable
 inline constexpr int kNotPvs = 21;          ///< not a .pvs file (bad magic)

@@ -18,6 +18,7 @@ enum class InputProblem {
   EmptyCity = 16,        ///< no building in the input
   UnsupportedFormat = 17,
   Implausible = 18,  ///< far outside what a city can be (a building 10 km tall)
+  InvalidXml = 19,   ///< CityGML that is no well-formed XML (message has line and column)
 };
 
 /// The exit code a command returns for an InputError (distinct per problem).

@@ -26,8 +26,9 @@ namespace urbanpvs::preprocess {
 
 /// Everything one run of urbanpvs-preprocess needs.
 struct PreprocessRequest {
-  std::vector<std::string> inputs;  ///< city files (CityJSON, GeoJSON), one coordinate system
-  std::string output;               ///< the .pvs file; the journal is output + ".journal"
+  std::vector<std::string>
+      inputs;          ///< city files (CityJSON, CityGML, GeoJSON, OSM), one coordinate system
+  std::string output;  ///< the .pvs file; the journal is output + ".journal"
   geometry::ReadOptions read;
   BakeOptions bake;         ///< bake.cells.region is filled from region_file by the run
   std::string region_file;  ///< GeoJSON polygons in the city's CRS; empty: the default region

@@ -18,12 +18,12 @@
 namespace urbanpvs::preprocess {
 
 /// The exit codes urbanpvs-preprocess uses besides 0, from the tools' one table
-/// (urbanpvs/runtime/ExitCodes.hpp); input errors exit with geometry::exit_code() (10–18).
+/// (urbanpvs/runtime/ExitCodes.hpp); input errors exit with geometry::exit_code() (10–19).
 inline constexpr int kExitUsage = exit_code::kUsage;  ///< bad command line or config; journal
 inline constexpr int kExitProcessing = exit_code::kProcessing;  ///< the bake itself failed
 inline constexpr int kExitOutput = exit_code::kOutput;  ///< output, journal or report unwritable
 static_assert(int(geometry::InputProblem::Unreadable) == exit_code::kCityInputFirst &&
-              int(geometry::InputProblem::Implausible) == exit_code::kCityInputLast);
+              int(geometry::InputProblem::InvalidXml) == exit_code::kCityInputLast);
 
 /// Parses urbanpvs-preprocess's command line, merging the --config file it names (the command
 /// line wins). Returns the exit code when the program should stop here (0 after --help, 2 after

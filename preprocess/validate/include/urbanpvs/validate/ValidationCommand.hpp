@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // What urbanpvs-validate and urbanpvs-explain share on the command line (header only, for the
 // two tools): the target options, and the run on CITY... PVS with the tools' exit codes (input
-// errors 10-18, a .pvs that does not load 20-23, anything else 4).
+// errors 10-19, a .pvs that does not load 20-23, anything else 4).
 #pragma once
 
 #include <CLI/CLI.hpp>

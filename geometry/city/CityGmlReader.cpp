@@ -1,0 +1,472 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// CityGML (1.0, 2.0 and 3.0): the format most LoD1/LoD2 city models are published in (the
+// German states' LoD2 data, Vienna, New York, Japan's PLATEAU). Its buildings and building parts
+// are turned into the CityJSON document the CityJSON reader knows, the way CityJSON's own
+// converters map one onto the other, so both formats go through one reader with one set of
+// repairs and rules:
+//  - a bldg:Building or bldg:BuildingPart becomes a Building or BuildingPart with its
+//    parents/children, keyed by its gml:id;
+//  - each geometry property (lod0FootPrint, lod1Solid, lod2MultiSurface, the lod2MultiSurface of a
+//    boundedBy RoofSurface / WallSurface / GroundSurface / ...) adds its polygons to one
+//    MultiSurface per LoD, with the thematic surface as its semantics;
+//  - surface members given by xlink:href (a lod2Solid made of the boundedBy polygons, as most
+//    LoD2 data is written) are resolved by gml:id, and a polygon met twice in one LoD is taken
+//    once;
+//  - installations, rooms, furniture and openings are no volume a prism from the ground may
+//    fill (thesis 7.1): their polygons are not the building's;
+//  - a dem:TINRelief's triangles become a TINRelief, the terrain; other city objects (vegetation,
+//    bridges, roads) are listed as ignored types, as the CityJSON reader lists them.
+// The file is read with expat, a streaming parser: CityGML tiles run to hundreds of megabytes.
+#include <expat.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <new>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "CityReaders.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+
+namespace urbanpvs::geometry::detail {
+namespace {
+
+using Point = std::array<double, 3>;
+using Ring = std::vector<Point>;
+
+struct GmlPolygon {
+  std::vector<Ring> rings;  // exterior first
+  std::string semantic;     // the thematic surface it was written under, if any
+};
+
+// One polygon of an object's geometry at one LoD: by index, or by a gml:id to resolve.
+struct Member {
+  int lod = 0;
+  std::string semantic;
+  std::optional<std::size_t> polygon;
+  std::string href;
+};
+
+struct GmlObject {
+  std::string id;
+  std::string type;  // "Building" or "BuildingPart"
+  std::optional<std::size_t> parent;
+  std::vector<Member> members;
+  std::optional<double> measured_height;
+};
+
+// Names without their namespace prefix: "bldg:RoofSurface" -> "RoofSurface".
+std::string_view local_name(const char* name) {
+  std::string_view n(name);
+  const auto colon = n.rfind(':');
+  return colon == std::string_view::npos ? n : n.substr(colon + 1);
+}
+
+const char* attribute(const char** attributes, std::string_view wanted) {
+  for (const char** a = attributes; *a != nullptr; a += 2)
+    if (local_name(a[0]) == wanted) return a[1];
+  return nullptr;
+}
+
+bool is_thematic_surface(std::string_view n) {
+  return n == "RoofSurface" || n == "WallSurface" || n == "GroundSurface" ||
+         n == "ClosureSurface" || n == "OuterCeilingSurface" || n == "OuterFloorSurface" ||
+         n == "FloorSurface" || n == "CeilingSurface" || n == "InteriorWallSurface";
+}
+
+// Parts of a building that are no part of its volume standing on the ground.
+bool is_excluded_feature(std::string_view n) {
+  return n.find("Installation") != std::string_view::npos ||
+         n.find("Furniture") != std::string_view::npos || n == "Room" || n == "Window" ||
+         n == "Door" || n == "Opening" || n == "BuildingRoom" || n == "BuildingConstructiveElement";
+}
+
+// "lod2MultiSurface" -> 2; "lod0FootPrint" -> 0; anything else -> nullopt.
+std::optional<int> lod_property(std::string_view n) {
+  if (n.size() < 5 || n.substr(0, 3) != "lod" || !std::isdigit(static_cast<unsigned char>(n[3])))
+    return std::nullopt;
+  return n[3] - '0';
+}
+
+// Reference systems as CityGML files name them. Compound ones ("urn:ogc:def:crs,crs:EPSG::25832,
+// crs:EPSG::7837") give their horizontal part first; the German surveying offices' own names
+// ("urn:adv:crs:ETRS89_UTM32*DE_DHHN2016_NH") name the UTM zone on ETRS89.
+std::string horizontal_crs(const std::string& name) {
+  if (name.find("ETRS89_UTM32") != std::string::npos) return "EPSG:25832";
+  if (name.find("ETRS89_UTM33") != std::string::npos) return "EPSG:25833";
+  if (name.find(",crs:") != std::string::npos) {
+    std::size_t start = 0;
+    while (start <= name.size()) {
+      const std::size_t end = std::min(name.find(',', start), name.size());
+      const std::string part = name.substr(start, end - start);
+      if (part.find("EPSG") != std::string::npos) return part;
+      start = end + 1;
+    }
+  }
+  return name;
+}
+
+class CityGmlParser {
+ public:
+  explicit CityGmlParser(const std::string& file) : file_(file) {}
+
+  Json parse(std::string_view text) {
+    XML_Parser p = XML_ParserCreate(nullptr);
+    if (p == nullptr) throw std::bad_alloc();
+    parser_ = p;
+    XML_SetUserData(p, this);
+    XML_SetElementHandler(p, &CityGmlParser::on_start, &CityGmlParser::on_end);
+    XML_SetCharacterDataHandler(p, &CityGmlParser::on_text);
+    bool ok = true;
+    // XML_Parse takes an int length: feed the text in pieces.
+    constexpr std::size_t kPiece = std::size_t{1} << 30;
+    for (std::size_t at = 0; ok && (at < text.size() || at == 0); at += kPiece) {
+      const std::size_t n = std::min(kPiece, text.size() - at);
+      const bool last = at + n >= text.size();
+      ok = XML_Parse(p, text.data() + at, static_cast<int>(n), last ? 1 : 0) != XML_STATUS_ERROR;
+      if (last) break;
+    }
+    const std::string where = "line " + std::to_string(XML_GetCurrentLineNumber(p)) + ", column " +
+                              std::to_string(XML_GetCurrentColumnNumber(p));
+    const char* expat_error = ok ? "" : XML_ErrorString(XML_GetErrorCode(p));  // NULL when none
+    const std::string problem = expat_error != nullptr ? expat_error : "malformed XML";
+    XML_ParserFree(p);
+    if (error_) throw *error_;
+    if (!ok) throw InputError(InputProblem::InvalidXml, file_, where, problem);
+    return document();
+  }
+
+ private:
+  struct Context {  // what a geometry property holds
+    int lod = 0;
+    std::string semantic;
+  };
+
+  static void on_start(void* self, const char* name, const char** attributes) {
+    static_cast<CityGmlParser*>(self)->start(local_name(name), attributes);
+  }
+  static void on_end(void* self, const char* name) {
+    static_cast<CityGmlParser*>(self)->end(local_name(name));
+  }
+  static void on_text(void* self, const char* s, int n) {
+    auto* me = static_cast<CityGmlParser*>(self);
+    if (me->collecting_) me->text_.append(s, static_cast<std::size_t>(n));
+  }
+
+  // Stops the parse with an InputError thrown once expat has returned (an exception must not
+  // unwind through its C frames).
+  void fail(InputProblem problem, const std::string& feature, const std::string& what) {
+    if (!error_) error_ = InputError(problem, file_, feature, what);
+    XML_StopParser(parser_, XML_FALSE);
+  }
+
+  std::string current_id() const {
+    return objects_.empty() || object_stack_.empty() ? std::string("(no building)")
+                                                     : objects_[object_stack_.back()].id;
+  }
+
+  void start(std::string_view n, const char** attributes) {
+    names_.emplace_back(n);
+    if (const char* srs = attribute(attributes, "srsName"); srs != nullptr && crs_.empty())
+      crs_ = horizontal_crs(srs);
+    if (const char* d = attribute(attributes, "srsDimension"))
+      dimension_stack_.push_back(std::atoi(d));
+    else
+      dimension_stack_.push_back(dimension_stack_.empty() ? 3 : dimension_stack_.back());
+    if (excluded_depth_ > 0) {
+      ++excluded_depth_;
+      return;
+    }
+    if (is_excluded_feature(n)) {
+      excluded_depth_ = 1;
+      return;
+    }
+    if (names_.size() >= 2 &&
+        (names_[names_.size() - 2] == "cityObjectMember" ||
+         names_[names_.size() - 2] == "featureMember") &&
+        n != "Building" && n != "ReliefFeature") {
+      // Another kind of city object (vegetation, a bridge, a road): listed as ignored.
+      const char* id = attribute(attributes, "id");
+      ignored_.push_back(
+          {id != nullptr ? id : std::string(n) + "-" + std::to_string(ignored_.size() + 1),
+           std::string(n)});
+      excluded_depth_ = 1;
+      return;
+    }
+    if (n == "Building" || n == "BuildingPart" || n == "TINRelief") {
+      GmlObject o;
+      const char* id = attribute(attributes, "id");
+      o.id = id != nullptr ? id : "building-" + std::to_string(objects_.size() + 1);
+      if (ids_.count(o.id) != 0) o.id += "#" + std::to_string(objects_.size() + 1);
+      ids_.insert({o.id, objects_.size()});
+      o.type = std::string(n);
+      if (!object_stack_.empty()) o.parent = object_stack_.back();
+      objects_.push_back(std::move(o));
+      object_stack_.push_back(objects_.size() - 1);
+      object_depth_.push_back(names_.size());
+      if (n == "TINRelief") {  // its triangles (gml:Triangle patches) are the terrain's
+        contexts_.push_back({1, ""});
+        context_depth_.push_back(names_.size());
+      }
+      return;
+    }
+    if (is_thematic_surface(n)) {
+      semantic_stack_.emplace_back(n);
+      return;
+    }
+    if (const std::optional<int> lod = lod_property(n)) {
+      contexts_.push_back({*lod, semantic_stack_.empty() ? "" : semantic_stack_.back()});
+      context_depth_.push_back(names_.size());
+      return;
+    }
+    if (n == "Polygon" || n == "Triangle" || n == "Rectangle") {
+      polygons_.emplace_back();
+      if (!semantic_stack_.empty()) polygons_.back().semantic = semantic_stack_.back();
+      if (const char* id = attribute(attributes, "id"))
+        polygon_ids_.insert({id, polygons_.size() - 1});
+      open_polygons_.push_back(polygons_.size() - 1);
+      return;
+    }
+    if (n == "LinearRing") {
+      ring_.clear();
+      return;
+    }
+    if (n == "posList" || n == "pos" || n == "coordinates" || n == "measuredHeight") {
+      collecting_ = true;
+      text_.clear();
+      return;
+    }
+    if (const char* href = attribute(attributes, "href");
+        href != nullptr && !contexts_.empty() && !object_stack_.empty()) {
+      std::string ref = href;
+      if (!ref.empty() && ref.front() == '#') ref.erase(0, 1);
+      Member m;
+      m.lod = contexts_.back().lod;
+      m.semantic = contexts_.back().semantic;
+      m.href = std::move(ref);
+      objects_[object_stack_.back()].members.push_back(std::move(m));
+    }
+  }
+
+  void end(std::string_view n) {
+    const int dimension = dimension_stack_.back();
+    dimension_stack_.pop_back();
+    const std::size_t depth = names_.size();
+    names_.pop_back();
+    if (excluded_depth_ > 0) {
+      --excluded_depth_;
+      return;
+    }
+    if (!object_depth_.empty() && object_depth_.back() == depth) {
+      object_stack_.pop_back();
+      object_depth_.pop_back();
+      if (!context_depth_.empty() && context_depth_.back() == depth) {
+        contexts_.pop_back();
+        context_depth_.pop_back();
+      }
+      return;
+    }
+    if (is_thematic_surface(n)) {
+      if (!semantic_stack_.empty()) semantic_stack_.pop_back();
+      return;
+    }
+    if (!context_depth_.empty() && context_depth_.back() == depth) {
+      contexts_.pop_back();
+      context_depth_.pop_back();
+      return;
+    }
+    if (n == "posList" || n == "pos" || n == "coordinates") {
+      collecting_ = false;
+      read_points(n == "coordinates", dimension);
+      return;
+    }
+    if (n == "measuredHeight") {
+      collecting_ = false;
+      char* stop = nullptr;
+      const double h = std::strtod(text_.c_str(), &stop);
+      if (stop != text_.c_str() && !object_stack_.empty())
+        objects_[object_stack_.back()].measured_height = h;
+      return;
+    }
+    if (n == "LinearRing") {
+      if (!open_polygons_.empty()) {
+        // CityGML closes a ring by repeating its first point; CityJSON does not.
+        if (ring_.size() > 1 && ring_.front() == ring_.back()) ring_.pop_back();
+        polygons_[open_polygons_.back()].rings.push_back(std::move(ring_));
+      }
+      ring_.clear();
+      return;
+    }
+    if (n == "Polygon" || n == "Triangle" || n == "Rectangle") {
+      const std::size_t index = open_polygons_.back();
+      open_polygons_.pop_back();
+      if (!contexts_.empty() && !object_stack_.empty()) {
+        Member m;
+        m.lod = contexts_.back().lod;
+        m.semantic = contexts_.back().semantic;
+        m.polygon = index;
+        objects_[object_stack_.back()].members.push_back(std::move(m));
+      }
+    }
+  }
+
+  // Coordinates of a posList or pos ("x y z x y z ...") or of GML 2's coordinates
+  // ("x,y,z x,y,z ..."), `dimension` values per point.
+  void read_points(bool comma_tuples, int dimension) {
+    if (comma_tuples) std::replace(text_.begin(), text_.end(), ',', ' ');
+    if (dimension != 2 && dimension != 3) {
+      fail(InputProblem::BadStructure, current_id(),
+           "srsDimension " + std::to_string(dimension) + " (2 or 3 expected)");
+      return;
+    }
+    std::vector<double> values;
+    const char* s = text_.c_str();
+    for (;;) {
+      while (*s != '\0' && std::isspace(static_cast<unsigned char>(*s))) ++s;
+      if (*s == '\0') break;
+      char* stop = nullptr;
+      const double v = std::strtod(s, &stop);
+      if (stop == s) {
+        fail(InputProblem::BadStructure, current_id(),
+             "coordinate list holds \"" +
+                 std::string(s, std::min<std::size_t>(20, std::strlen(s))) + "\", not a number");
+        return;
+      }
+      values.push_back(v);
+      s = stop;
+    }
+    if (values.size() % static_cast<std::size_t>(dimension) != 0) {
+      fail(InputProblem::BadStructure, current_id(),
+           std::to_string(values.size()) + " coordinates are no whole number of " +
+               std::to_string(dimension) + "D points");
+      return;
+    }
+    for (std::size_t i = 0; i < values.size(); i += static_cast<std::size_t>(dimension))
+      ring_.push_back({values[i], values[i + 1], dimension == 3 ? values[i + 2] : 0.0});
+  }
+
+  // The CityJSON document: version 1.0, whose vertices are plain coordinates (no transform, so
+  // nothing is rounded), one MultiSurface per LoD and object.
+  Json document() {
+    Json doc;
+    doc["type"] = "CityJSON";
+    doc["version"] = "1.0";
+    if (!crs_.empty()) doc["metadata"]["referenceSystem"] = crs_;
+    Json& city_objects = doc["CityObjects"] = Json::object();
+    Json vertices = Json::array();
+    for (std::size_t i = 0; i < objects_.size(); ++i) {
+      const GmlObject& o = objects_[i];
+      Json obj;
+      obj["type"] = o.type;
+      if (o.measured_height) obj["attributes"]["measuredHeight"] = *o.measured_height;
+      if (o.parent) obj["parents"] = Json::array({objects_[*o.parent].id});
+      Json children = Json::array();
+      for (const GmlObject& c : objects_)
+        if (c.parent && *c.parent == i) children.push_back(c.id);
+      if (!children.empty()) obj["children"] = std::move(children);
+      obj["geometry"] = geometries(o, vertices);
+      city_objects[o.id] = std::move(obj);
+    }
+    for (const auto& [id, type] : ignored_)
+      if (!city_objects.contains(id)) city_objects[id] = Json{{"type", type}};
+    doc["vertices"] = std::move(vertices);
+    return doc;
+  }
+
+  Json geometries(const GmlObject& o, Json& vertices) const {
+    std::map<int, std::vector<std::pair<std::size_t, std::string>>> by_lod;  // polygon, semantic
+    for (const Member& m : o.members) {
+      std::optional<std::size_t> index = m.polygon;
+      if (!index) {
+        const auto it = polygon_ids_.find(m.href);
+        if (it == polygon_ids_.end()) continue;  // a reference to something other than a polygon
+        index = it->second;
+      }
+      auto& list = by_lod[m.lod];
+      const std::string& semantic =
+          !polygons_[*index].semantic.empty() ? polygons_[*index].semantic : m.semantic;
+      if (std::none_of(list.begin(), list.end(), [&](const auto& e) { return e.first == *index; }))
+        list.push_back({*index, semantic});
+    }
+    Json out = Json::array();
+    for (const auto& [lod, list] : by_lod) {
+      Json boundaries = Json::array(), surfaces = Json::array(), values = Json::array();
+      std::map<std::string, std::size_t> surface_of;
+      for (const auto& [index, semantic] : list) {
+        const GmlPolygon& p = polygons_[index];
+        if (p.rings.empty()) continue;
+        Json surface = Json::array();
+        for (const Ring& r : p.rings) {
+          Json ring = Json::array();
+          for (const Point& v : r) {
+            ring.push_back(vertices.size());
+            vertices.push_back(Json::array({v[0], v[1], v[2]}));
+          }
+          surface.push_back(std::move(ring));
+        }
+        boundaries.push_back(std::move(surface));
+        if (semantic.empty()) {
+          values.push_back(nullptr);
+        } else {
+          auto [it, added] = surface_of.insert({semantic, surface_of.size()});
+          if (added) surfaces.push_back(Json{{"type", semantic}});
+          values.push_back(it->second);
+        }
+      }
+      if (boundaries.empty()) continue;
+      Json g;
+      g["type"] = "MultiSurface";
+      g["lod"] = lod;
+      g["boundaries"] = std::move(boundaries);
+      if (!surfaces.empty()) {
+        g["semantics"]["surfaces"] = std::move(surfaces);
+        g["semantics"]["values"] = std::move(values);
+      }
+      out.push_back(std::move(g));
+    }
+    return out;
+  }
+
+  const std::string& file_;
+  XML_Parser parser_ = nullptr;
+  std::optional<InputError> error_;
+  std::vector<std::string> names_;  // open elements
+  std::vector<int> dimension_stack_;
+  std::string crs_;
+  std::vector<GmlObject> objects_;
+  std::vector<std::pair<std::string, std::string>> ignored_;  // id, type
+  std::unordered_map<std::string, std::size_t> ids_;
+  std::vector<std::size_t> object_stack_, object_depth_;
+  std::vector<std::string> semantic_stack_;
+  std::vector<Context> contexts_;
+  std::vector<std::size_t> context_depth_;
+  std::vector<GmlPolygon> polygons_;
+  std::unordered_map<std::string, std::size_t> polygon_ids_;
+  std::vector<std::size_t> open_polygons_;
+  Ring ring_;
+  int excluded_depth_ = 0;
+  bool collecting_ = false;
+  std::string text_;
+};
+
+}  // namespace
+
+bool is_xml(std::string_view text) {
+  std::size_t i = 0;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") i = 3;  // a UTF-8 byte order mark
+  while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+  return i < text.size() && text[i] == '<';
+}
+
+Json citygml_to_cityjson(std::string_view text, const std::string& file) {
+  return CityGmlParser(file).parse(text);
+}
+
+}  // namespace urbanpvs::geometry::detail

@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// CityGML input (CityGmlReader.cpp). A hand-made district (tests/data/citygml/two_buildings.gml:
+// a gabled LoD2 house whose solid refers to its thematic surfaces by xlink, with a balcony; a
+// LoD1 block with a LoD1 building part; a compound reference system) reads as its own numbers
+// say. The bundled district, written by this test as CityGML 2.0 with every surface under its
+// thematic surface, reads exactly as its CityJSON file: the same objects, boxes, occluders and
+// surfaces. Malformed CityGML is refused with the file, line and problem (tests/data/bad/
+// citygml_*, ReaderTest.cpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "TextFile.hpp"
+#include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/InputError.hpp"
+
+namespace {
+
+using namespace urbanpvs::geometry;
+using Json = nlohmann::ordered_json;
+using urbanpvs::test::read_text;
+
+const std::string kTestData = URBANPVS_TEST_DATA;
+
+const CityObject& object_named(const City& city, const std::string& id) {
+  for (const CityObject& o : city.objects)
+    if (o.source_id == id) return o;
+  throw std::runtime_error("no object " + id);
+}
+
+TEST(CityGml, ReadsPartsXlinksAndSemanticsOfAHandMadeDistrict) {
+  const City city = read_city({kTestData + "/citygml/two_buildings.gml"}, {});
+  EXPECT_EQ(city.frame.crs, "EPSG:25832");  // the horizontal part of the compound system
+  ASSERT_EQ(city.objects.size(), 2u);
+
+  // The house: its seven thematic surfaces (each met twice: under boundedBy and by xlink from
+  // the solid) once each; the balcony is no part of it.
+  const CityObject& house = object_named(city, "DEBY_B1");
+  EXPECT_EQ(house.surfaces.size(), 7u);
+  const Box3 h = house.bbox;
+  EXPECT_DOUBLE_EQ(h.xy.max.x - h.xy.min.x, 10.0);
+  EXPECT_DOUBLE_EQ(h.xy.max.y - h.xy.min.y, 8.0);  // the balcony would reach 2 m further south
+  EXPECT_DOUBLE_EQ(h.zmax - h.zmin, 9.0);
+  ASSERT_EQ(house.occluders.size(), 1u);
+  // A prism over the ground surface up to the eaves, the roof's lowest point.
+  EXPECT_DOUBLE_EQ(area(house.occluders[0].footprint), 80.0);
+  EXPECT_DOUBLE_EQ(house.occluders[0].top_z - house.occluders[0].ground_z, 6.0);
+
+  // The block and its part: one prism each, 12 m and 20 m tall.
+  const CityObject& block = object_named(city, "DEBY_B2");
+  ASSERT_EQ(block.occluders.size(), 2u);
+  std::vector<std::pair<double, double>> prisms;  // (height, area)
+  for (const OccluderPrism& p : block.occluders)
+    prisms.push_back({p.top_z - p.ground_z, area(p.footprint)});
+  std::sort(prisms.begin(), prisms.end());
+  EXPECT_DOUBLE_EQ(prisms[0].first, 12.0);
+  EXPECT_DOUBLE_EQ(prisms[0].second, 36.0);
+  EXPECT_DOUBLE_EQ(prisms[1].first, 20.0);
+  EXPECT_DOUBLE_EQ(prisms[1].second, 16.0);
+  EXPECT_DOUBLE_EQ(block.bbox.zmax - block.bbox.zmin, 20.0);
+}
+
+TEST(CityGml, ReadsTheReliefAsTerrainAndListsOtherObjectsAsIgnored) {
+  const City city = read_city({kTestData + "/citygml/building_on_relief.gml"}, {});
+  ASSERT_EQ(city.objects.size(), 1u);
+  EXPECT_EQ(city.objects[0].source_id, "house");
+  ASSERT_EQ(city.terrain.triangles.size(), 2u);
+  double lo = 1e9, hi = -1e9;
+  for (const Triangle3& t : city.terrain.triangles)
+    for (const Vec3& v : t.v) lo = std::min(lo, v.z), hi = std::max(hi, v.z);
+  EXPECT_DOUBLE_EQ(hi - lo, 10.0);  // 10 m .. 20 m in the file
+  EXPECT_EQ(city.report.ignored_types.at("SolitaryVegetationObject"), 1u);
+  EXPECT_EQ(city.report.ignored_types.size(), 1u);
+  ASSERT_EQ(city.objects[0].occluders.size(), 1u);
+  EXPECT_DOUBLE_EQ(area(city.objects[0].occluders[0].footprint), 100.0);
+}
+
+// --- The bundled district as CityGML, written here from its CityJSON ---
+
+std::string number(double v) {
+  char s[40];
+  std::snprintf(s, sizeof s, "%.17g", v);
+  return s;
+}
+
+// A CityJSON ring (vertex indices) as a closed gml:LinearRing, the transform applied the way a
+// CityJSON reader applies it.
+std::string linear_ring(const Json& ring, const Json& doc) {
+  const Json& scale = doc["transform"]["scale"];
+  const Json& translate = doc["transform"]["translate"];
+  std::string points;
+  auto add = [&](std::size_t i) {
+    const Json& v = doc["vertices"][i];
+    for (int k = 0; k < 3; ++k)
+      points +=
+          number(v[k].get<double>() * scale[k].get<double>() + translate[k].get<double>()) + " ";
+  };
+  for (const Json& i : ring) add(i.get<std::size_t>());
+  add(ring[0].get<std::size_t>());
+  points.pop_back();
+  return "<gml:LinearRing><gml:posList srsDimension=\"3\">" + points +
+         "</gml:posList></gml:LinearRing>";
+}
+
+std::string polygon(const Json& surface, const Json& doc) {
+  std::string s = "<gml:Polygon><gml:exterior>" + linear_ring(surface[0], doc) + "</gml:exterior>";
+  for (std::size_t r = 1; r < surface.size(); ++r)
+    s += "<gml:interior>" + linear_ring(surface[r], doc) + "</gml:interior>";
+  return s + "</gml:Polygon>";
+}
+
+// One object with its parts nested the way CityGML nests them (consistsOfBuildingPart). Every
+// surface of a Solid's outer shell goes under its thematic surface (boundedBy), in file order.
+std::string gml_object(const std::string& id, const Json& doc) {
+  const Json& o = doc["CityObjects"][id];
+  const std::string tag = o["type"].get<std::string>();
+  std::ostringstream s;
+  s << "<bldg:" << tag << " gml:id=\"" << id << "\">\n";
+  for (const Json& g : o["geometry"]) {
+    EXPECT_EQ(g["type"], "Solid") << id;  // what the bundled district holds
+    const std::string lod = std::string(1, g["lod"].get<std::string>()[0]);
+    const Json& shell = g["boundaries"][0];
+    for (std::size_t k = 0; k < shell.size(); ++k) {
+      const Json& value = g["semantics"]["values"][0][k];
+      const std::string semantic =
+          g["semantics"]["surfaces"][value.get<std::size_t>()]["type"].get<std::string>();
+      s << "<bldg:boundedBy><bldg:" << semantic << "><bldg:lod" << lod
+        << "MultiSurface><gml:MultiSurface><gml:surfaceMember>" << polygon(shell[k], doc)
+        << "</gml:surfaceMember></gml:MultiSurface></bldg:lod" << lod
+        << "MultiSurface></bldg:" << semantic << "></bldg:boundedBy>\n";
+    }
+  }
+  if (o.contains("children"))
+    for (const Json& child : o["children"])
+      s << "<bldg:consistsOfBuildingPart>" << gml_object(child.get<std::string>(), doc)
+        << "</bldg:consistsOfBuildingPart>\n";
+  s << "</bldg:" << tag << ">\n";
+  return s.str();
+}
+
+std::string as_citygml(const Json& doc) {
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+       "<core:CityModel xmlns:core=\"http://www.opengis.net/citygml/2.0\" "
+       "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" "
+       "xmlns:gml=\"http://www.opengis.net/gml\">\n"
+       "<gml:boundedBy><gml:Envelope srsName=\""
+    << doc["metadata"]["referenceSystem"].get<std::string>()
+    << "\" srsDimension=\"3\"></gml:Envelope></gml:boundedBy>\n";
+  for (const auto& [id, o] : doc["CityObjects"].items())
+    if (!o.contains("parents"))
+      s << "<core:cityObjectMember>" << gml_object(id, doc) << "</core:cityObjectMember>\n";
+  s << "</core:CityModel>\n";
+  return s.str();
+}
+
+TEST(CityGml, TheBundledDistrictReadsAsItsCityJson) {
+  const std::string path = std::string(URBANPVS_SOURCE_DIR) + "/cities/sample/district.city.json";
+  const std::string text = read_text(path);
+  const Json doc = Json::parse(text);
+  const City want = read_city_text(text, "district.city.json", {});
+  const City got = read_city_text(as_citygml(doc), "district.gml", {});
+  EXPECT_EQ(got.frame.crs, want.frame.crs);
+  // CityGML closes rings by repeating the first point, CityJSON does not: nothing to repair.
+  EXPECT_EQ(got.report.repaired_duplicate_points, want.report.repaired_duplicate_points);
+  EXPECT_EQ(got.report.repaired_unclosed, want.report.repaired_unclosed);
+  EXPECT_EQ(got.report.ignored_types, want.report.ignored_types);
+  ASSERT_EQ(got.objects.size(), want.objects.size());
+  std::size_t occluders = 0;
+  for (std::size_t i = 0; i < want.objects.size(); ++i) {
+    const CityObject& a = want.objects[i];
+    const CityObject& b = got.objects[i];
+    ASSERT_EQ(b.source_id, a.source_id);
+    EXPECT_EQ(b.bbox.xy.min, a.bbox.xy.min) << a.source_id;
+    EXPECT_EQ(b.bbox.xy.max, a.bbox.xy.max) << a.source_id;
+    EXPECT_EQ(b.bbox.zmin, a.bbox.zmin) << a.source_id;
+    EXPECT_EQ(b.bbox.zmax, a.bbox.zmax) << a.source_id;
+    EXPECT_EQ(b.surfaces.size(), a.surfaces.size()) << a.source_id;
+    ASSERT_EQ(b.occluders.size(), a.occluders.size()) << a.source_id;
+    for (std::size_t k = 0; k < a.occluders.size(); ++k) {
+      EXPECT_EQ(b.occluders[k].top_z, a.occluders[k].top_z) << a.source_id;
+      EXPECT_EQ(b.occluders[k].ground_z, a.occluders[k].ground_z) << a.source_id;
+      EXPECT_EQ(area(b.occluders[k].footprint), area(a.occluders[k].footprint)) << a.source_id;
+    }
+    occluders += a.occluders.size();
+  }
+  EXPECT_GT(occluders, 300u);
+}
+
+}  // namespace
