@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "SameCity.hpp"
 #include "SharedCities.hpp"
 #include "TextFile.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
@@ -29,6 +30,7 @@ namespace {
 using namespace urbanpvs::geometry;
 using Json = nlohmann::ordered_json;
 
+using urbanpvs::test::expect_same_city;
 using urbanpvs::test::read_text;
 
 // The vertex indices of `boundaries` renumbered from 0 in order of first use, the used
@@ -79,48 +81,6 @@ std::string as_sequence(const Json& doc) {
   }
   EXPECT_EQ(written.size(), objects.size()) << "every object belongs to a family";
   return out;
-}
-
-// What the reader made of an object, every coordinate to the last bit.
-std::string digest(const CityObject& o) {
-  std::string s;
-  char b[64];
-  const auto number = [&](double v) {
-    std::snprintf(b, sizeof b, "%.17g ", v);
-    s += b;
-  };
-  const auto polygon = [&](const Polygon& p) {
-    for (const Vec2& v : p.outer) number(v.x), number(v.y);
-    for (const Ring& h : p.holes) {
-      s += "| ";
-      for (const Vec2& v : h) number(v.x), number(v.y);
-    }
-    s += "; ";
-  };
-  s += o.occludes ? "occludes " : "occludes nothing ";
-  for (double v : {o.bbox.xy.min.x, o.bbox.xy.min.y, o.bbox.zmin, o.bbox.xy.max.x, o.bbox.xy.max.y,
-                   o.bbox.zmax, o.ground_z})
-    number(v);
-  for (const Polygon& p : o.footprint) polygon(p);
-  for (const OccluderPrism& prism : o.occluders) {
-    polygon(prism.footprint);
-    number(prism.ground_z), number(prism.top_z);
-  }
-  s += std::to_string(o.surfaces.size()) + " surfaces";
-  return s;
-}
-
-void expect_same_city(const City& file, const City& sequence) {
-  ASSERT_EQ(file.objects.size(), sequence.objects.size());
-  std::map<std::string, std::string> by_id;
-  for (const CityObject& o : file.objects) by_id[o.source_id] = digest(o);
-  for (const CityObject& o : sequence.objects) {
-    ASSERT_TRUE(by_id.count(o.source_id)) << o.source_id;
-    EXPECT_EQ(by_id[o.source_id], digest(o)) << o.source_id;
-  }
-  EXPECT_EQ(file.frame.crs, sequence.frame.crs);
-  EXPECT_EQ(file.report.repaired_orientation, sequence.report.repaired_orientation);
-  EXPECT_EQ(file.report.repaired_duplicate_points, sequence.report.repaired_duplicate_points);
 }
 
 void check_sequence_of(const std::string& path) {
