@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "urbanpvs/geometry/city/CityReader.hpp"
 
+#include <cpl_error.h>
+#include <ogr_spatialref.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -274,6 +277,40 @@ void place_on_terrain(City& city, const std::vector<bool>& relative) {
         ") lie partly off the terrain: their ground is taken from the terrain under the rest");
 }
 
+// Every stage works in metres: ε, the cell edges, the eye band and the PVS file's frame. A
+// projected system that measures in feet (the US state planes, e.g. EPSG:2263) read as metres
+// would bake a city 3.28 times its size for viewers 0.6 m tall, and a geographic system other
+// than WGS84 lon/lat would be read as metres: both are refused, saying what to do. Systems PROJ
+// does not know are taken as metres, as the file says nothing else.
+void check_metric(const detail::InputScan& scan, const std::string& name) {
+  if (scan.kind != LocalFrame::Kind::Projected || scan.crs.rfind("EPSG:", 0) != 0) return;
+  const std::string digits = scan.crs.substr(5);
+  if (digits.empty() || digits.size() > 9 ||
+      digits.find_first_not_of("0123456789") != std::string::npos)
+    return;
+  OGRSpatialReference s;
+  CPLPushErrorHandler(CPLQuietErrorHandler);  // an unknown code is no error here
+  const OGRErr known = s.importFromEPSG(std::stoi(digits));
+  CPLPopErrorHandler();
+  if (known != OGRERR_NONE) return;
+  const std::string reproject =
+      "reproject the input to a projected system in metres (ogr2ogr -t_srs, cjio reproject, "
+      "citygml-tools reproject) or to WGS84 lon/lat";
+  if (s.IsGeographic())
+    throw InputError(InputProblem::UnknownCrs, name, "",
+                     scan.crs + " is geographic (degrees) but not WGS84 lon/lat: " + reproject);
+  const char* unit = nullptr;
+  const double metres = s.GetLinearUnits(&unit);
+  if (std::abs(metres - 1) > 1e-9) {
+    char what[160];
+    std::snprintf(what, sizeof what,
+                  " measures in %s (%.7g m), but every setting and the PVS "
+                  "file are in metres: ",
+                  unit != nullptr ? unit : "a unit", metres);
+    throw InputError(InputProblem::UnknownCrs, name, "", scan.crs + what + reproject);
+  }
+}
+
 struct Reader {
   const ReadOptions& options;
   City city;
@@ -285,6 +322,7 @@ struct Reader {
     const detail::InputScan scan = format == Format::CityJson
                                        ? detail::scan_cityjson(doc, name)
                                        : detail::scan_geojson(doc, name, options);
+    check_metric(scan, name);
     if (!mapping) {
       city.frame = choose_local_frame(scan.kind, scan.crs, scan.bounds);
       city.report.coordinate_note = scan.note;
