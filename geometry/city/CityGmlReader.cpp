@@ -10,8 +10,8 @@
 //    boundedBy RoofSurface / WallSurface / GroundSurface / ...) adds its polygons to one
 //    MultiSurface per LoD, with the thematic surface as its semantics;
 //  - surface members given by xlink:href (a lod2Solid made of the boundedBy polygons, as most
-//    LoD2 data is written) are resolved by gml:id, and a polygon met twice in one LoD is taken
-//    once;
+//    LoD2 data is written, or of a surface or solid given elsewhere) are resolved by gml:id to
+//    the polygons of what they name, and a polygon met twice in one LoD is taken once;
 //  - installations, rooms, furniture and openings are no volume a prism from the ground may
 //    fill (thesis 7.1): their polygons are not the building's;
 //  - a dem:TINRelief's triangles become a TINRelief, the terrain; other city objects (vegetation,
@@ -30,6 +30,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "CityReaders.hpp"
@@ -200,7 +201,13 @@ class CityGmlParser {
       excluded_depth_ = 1;
       return;
     }
-    if (n == "Building" || n == "BuildingPart" || n == "TINRelief") {
+    const bool object = n == "Building" || n == "BuildingPart" || n == "TINRelief";
+    const bool polygon = n == "Polygon" || n == "Triangle" || n == "Rectangle";
+    if (const char* id = attribute(attributes, "id"); id != nullptr && !object && !polygon) {
+      // A surface, a solid or a thematic surface an xlink may name: the polygons inside it.
+      groups_.push_back({id, polygons_.size(), names_.size()});
+    }
+    if (object) {
       GmlObject o;
       const char* id = attribute(attributes, "id");
       o.id = id != nullptr ? id : "building-" + std::to_string(objects_.size() + 1);
@@ -226,11 +233,11 @@ class CityGmlParser {
       context_depth_.push_back(names_.size());
       return;
     }
-    if (n == "Polygon" || n == "Triangle" || n == "Rectangle") {
+    if (polygon) {
       polygons_.emplace_back();
       if (!semantic_stack_.empty()) polygons_.back().semantic = semantic_stack_.back();
       if (const char* id = attribute(attributes, "id"))
-        polygon_ids_.insert({id, polygons_.size() - 1});
+        surface_ids_.insert({id, {polygons_.size() - 1, polygons_.size()}});
       open_polygons_.push_back(polygons_.size() - 1);
       return;
     }
@@ -263,6 +270,11 @@ class CityGmlParser {
     if (excluded_depth_ > 0) {
       --excluded_depth_;
       return;
+    }
+    if (!groups_.empty() && groups_.back().depth == depth) {
+      if (polygons_.size() > groups_.back().first)
+        surface_ids_.insert({groups_.back().id, {groups_.back().first, polygons_.size()}});
+      groups_.pop_back();
     }
     if (!object_depth_.empty() && object_depth_.back() == depth) {
       object_stack_.pop_back();
@@ -380,20 +392,34 @@ class CityGmlParser {
     return doc;
   }
 
-  Json geometries(const GmlObject& o, Json& vertices) const {
+  static constexpr std::size_t kMaxExpansion = 16;
+
+  Json geometries(const GmlObject& o, Json& vertices) {
     std::map<int, std::vector<std::pair<std::size_t, std::string>>> by_lod;  // polygon, semantic
+    std::map<int, std::unordered_set<std::size_t>> taken;                    // per LoD
     for (const Member& m : o.members) {
-      std::optional<std::size_t> index = m.polygon;
-      if (!index) {
-        const auto it = polygon_ids_.find(m.href);
-        if (it == polygon_ids_.end()) continue;  // a reference to something other than a polygon
-        index = it->second;
+      std::pair<std::size_t, std::size_t> range;  // the polygons it stands for
+      if (m.polygon) {
+        range = {*m.polygon, *m.polygon + 1};
+      } else {
+        const auto it = surface_ids_.find(m.href);
+        if (it == surface_ids_.end()) continue;  // a reference to nothing with polygons
+        range = it->second;
       }
-      auto& list = by_lod[m.lod];
-      const std::string& semantic =
-          !polygons_[*index].semantic.empty() ? polygons_[*index].semantic : m.semantic;
-      if (std::none_of(list.begin(), list.end(), [&](const auto& e) { return e.first == *index; }))
-        list.push_back({*index, semantic});
+      // An xlink may name a surface of any size, and any number of xlinks may name it: a few
+      // bytes would stand for millions of polygons. Each polygon is written about once or
+      // twice by real data; far more is refused.
+      expanded_ += range.second - range.first;
+      if (expanded_ > kMaxExpansion * (polygons_.size() + 1000))
+        throw InputError(InputProblem::BadStructure, file_, o.id,
+                         "xlinks name the file's polygons more than " +
+                             std::to_string(kMaxExpansion) + " times over");
+      for (std::size_t index = range.first; index < range.second; ++index) {
+        if (!taken[m.lod].insert(index).second) continue;
+        const std::string& semantic =
+            !polygons_[index].semantic.empty() ? polygons_[index].semantic : m.semantic;
+        by_lod[m.lod].push_back({index, semantic});
+      }
     }
     Json out = Json::array();
     for (const auto& [lod, list] : by_lod) {
@@ -448,7 +474,14 @@ class CityGmlParser {
   std::vector<Context> contexts_;
   std::vector<std::size_t> context_depth_;
   std::vector<GmlPolygon> polygons_;
-  std::unordered_map<std::string, std::size_t> polygon_ids_;
+  struct Group {  // an element with a gml:id still open, and the first polygon inside it
+    std::string id;
+    std::size_t first, depth;
+  };
+  std::vector<Group> groups_;
+  std::size_t expanded_ = 0;  // polygons written for members, summed over the file
+  /// gml:id -> the polygons [first, end) of that polygon, surface, solid or thematic surface.
+  std::unordered_map<std::string, std::pair<std::size_t, std::size_t>> surface_ids_;
   std::vector<std::size_t> open_polygons_;
   Ring ring_;
   int excluded_depth_ = 0;

@@ -2,10 +2,11 @@
 // CityGML input (CityGmlReader.cpp). A hand-made district (tests/data/citygml/two_buildings.gml:
 // a gabled LoD2 house whose solid refers to its thematic surfaces by xlink, with a balcony; a
 // LoD1 block with a LoD1 building part; a compound reference system) reads as its own numbers
-// say. The bundled district and, where ../shared/cities has it, the 3D BAG tile, written by this
-// test as CityGML 2.0 (surfaces with semantics under their thematic surfaces), read exactly as
-// their CityJSON files: the same objects, every coordinate to the last bit. Malformed CityGML is
-// refused with the file, line and problem (tests/data/bad/ citygml_*, ReaderTest.cpp).
+// say, and so does a CityGML 3.0 one (core:boundary, con:*Surface, bldg:buildingPart, a shell
+// reused by xlink). The bundled district and, where ../shared/cities has it, the 3D BAG tile,
+// written by this test as CityGML 2.0 (surfaces with semantics under their thematic surfaces), read
+// exactly as their CityJSON files: the same objects, every coordinate to the last bit. Malformed
+// CityGML is refused with the file, line and problem (tests/data/bad/ citygml_*, ReaderTest.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -66,6 +67,31 @@ TEST(CityGml, ReadsPartsXlinksAndSemanticsOfAHandMadeDistrict) {
   EXPECT_DOUBLE_EQ(prisms[1].first, 20.0);
   EXPECT_DOUBLE_EQ(prisms[1].second, 16.0);
   EXPECT_DOUBLE_EQ(block.bbox.zmax - block.bbox.zmin, 20.0);
+}
+
+TEST(CityGml, ReadsCityGml3BoundariesPartsAndReusedGeometry) {
+  const City city = read_city({kTestData + "/citygml/citygml3_parts_and_reuse.gml"}, {});
+  EXPECT_EQ(city.frame.crs, "EPSG:25833");
+  ASSERT_EQ(city.objects.size(), 2u);
+  // The house's six surfaces (the solid names them again, by xlink to a MultiSurface and to
+  // thematic surfaces: taken once) and its tower's six.
+  const CityObject& house = object_named(city, "house3");
+  EXPECT_EQ(house.surfaces.size(), 12u);
+  std::vector<std::pair<double, double>> prisms;  // (height, area)
+  for (const OccluderPrism& p : house.occluders)
+    prisms.push_back({p.top_z - p.ground_z, area(p.footprint)});
+  std::sort(prisms.begin(), prisms.end());
+  ASSERT_EQ(prisms.size(), 2u);
+  EXPECT_DOUBLE_EQ(prisms[0].first, 12.0);
+  EXPECT_DOUBLE_EQ(prisms[0].second, 120.0);
+  EXPECT_DOUBLE_EQ(prisms[1].first, 20.0);
+  EXPECT_DOUBLE_EQ(prisms[1].second, 16.0);
+  // The second building is the tower's shell again: the same prism.
+  const CityObject& reuse = object_named(city, "reuse");
+  EXPECT_EQ(reuse.surfaces.size(), 6u);
+  ASSERT_EQ(reuse.occluders.size(), 1u);
+  EXPECT_DOUBLE_EQ(reuse.occluders[0].top_z - reuse.occluders[0].ground_z, 20.0);
+  EXPECT_DOUBLE_EQ(area(reuse.occluders[0].footprint), 16.0);
 }
 
 TEST(CityGml, ReadsTheReliefAsTerrainAndListsOtherObjectsAsIgnored) {
