@@ -37,6 +37,16 @@ const CityObject& object_named(const City& city, const std::string& id) {
   throw std::runtime_error("no object " + id);
 }
 
+// An object's occluder prisms as (height, footprint area), in increasing order. The test cities'
+// coordinates are whole metres, so both are exact.
+std::vector<std::pair<double, double>> prisms_of(const CityObject& o) {
+  std::vector<std::pair<double, double>> out;
+  for (const OccluderPrism& p : o.occluders)
+    out.push_back({p.top_z - p.ground_z, area(p.footprint)});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 TEST(CityGml, ReadsPartsXlinksAndSemanticsOfAHandMadeDistrict) {
   const City city = read_city({kTestData + "/citygml/two_buildings.gml"}, {});
   EXPECT_EQ(city.frame.crs, "EPSG:25832");  // the horizontal part of the compound system
@@ -57,15 +67,8 @@ TEST(CityGml, ReadsPartsXlinksAndSemanticsOfAHandMadeDistrict) {
 
   // The block and its part: one prism each, 12 m and 20 m tall.
   const CityObject& block = object_named(city, "DEBY_B2");
-  ASSERT_EQ(block.occluders.size(), 2u);
-  std::vector<std::pair<double, double>> prisms;  // (height, area)
-  for (const OccluderPrism& p : block.occluders)
-    prisms.push_back({p.top_z - p.ground_z, area(p.footprint)});
-  std::sort(prisms.begin(), prisms.end());
-  EXPECT_DOUBLE_EQ(prisms[0].first, 12.0);
-  EXPECT_DOUBLE_EQ(prisms[0].second, 36.0);
-  EXPECT_DOUBLE_EQ(prisms[1].first, 20.0);
-  EXPECT_DOUBLE_EQ(prisms[1].second, 16.0);
+  using Prisms = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(prisms_of(block), (Prisms{{12.0, 36.0}, {20.0, 16.0}}));
   EXPECT_DOUBLE_EQ(block.bbox.zmax - block.bbox.zmin, 20.0);
 }
 
@@ -77,15 +80,8 @@ TEST(CityGml, ReadsCityGml3BoundariesPartsAndReusedGeometry) {
   // thematic surfaces: taken once) and its tower's six.
   const CityObject& house = object_named(city, "house3");
   EXPECT_EQ(house.surfaces.size(), 12u);
-  std::vector<std::pair<double, double>> prisms;  // (height, area)
-  for (const OccluderPrism& p : house.occluders)
-    prisms.push_back({p.top_z - p.ground_z, area(p.footprint)});
-  std::sort(prisms.begin(), prisms.end());
-  ASSERT_EQ(prisms.size(), 2u);
-  EXPECT_DOUBLE_EQ(prisms[0].first, 12.0);
-  EXPECT_DOUBLE_EQ(prisms[0].second, 120.0);
-  EXPECT_DOUBLE_EQ(prisms[1].first, 20.0);
-  EXPECT_DOUBLE_EQ(prisms[1].second, 16.0);
+  using Prisms = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(prisms_of(house), (Prisms{{12.0, 120.0}, {20.0, 16.0}}));
   // The second building is the tower's shell again: the same prism.
   const CityObject& reuse = object_named(city, "reuse");
   EXPECT_EQ(reuse.surfaces.size(), 6u);
