@@ -25,7 +25,9 @@
 #include <climits>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <map>
+#include <memory>
 #include <new>
 #include <optional>
 #include <string>
@@ -119,7 +121,9 @@ class CityGmlParser {
   explicit CityGmlParser(const std::string& file) : file_(file) {}
 
   Json parse(std::string_view text) {
-    XML_Parser p = XML_ParserCreate(nullptr);
+    const std::unique_ptr<XML_ParserStruct, decltype(&XML_ParserFree)> owner(
+        XML_ParserCreate(nullptr), &XML_ParserFree);
+    XML_Parser p = owner.get();
     if (p == nullptr) throw std::bad_alloc();
     parser_ = p;
     XML_SetUserData(p, this);
@@ -138,7 +142,7 @@ class CityGmlParser {
                               std::to_string(XML_GetCurrentColumnNumber(p));
     const char* expat_error = ok ? "" : XML_ErrorString(XML_GetErrorCode(p));  // NULL when none
     const std::string problem = expat_error != nullptr ? expat_error : "malformed XML";
-    XML_ParserFree(p);
+    if (pending_) std::rethrow_exception(pending_);
     if (error_) throw *error_;
     if (!ok) throw InputError(InputProblem::InvalidXml, file_, where, problem);
     return document();
@@ -150,15 +154,28 @@ class CityGmlParser {
     std::string semantic;
   };
 
+  // No exception may unwind through expat's C frames (out of memory, say): it is kept, the
+  // parse stopped, and it is thrown again once expat has returned.
+  template <class F>
+  static void guarded(void* self, F&& f) {
+    auto* me = static_cast<CityGmlParser*>(self);
+    try {
+      f(*me);
+    } catch (...) {
+      if (!me->pending_) me->pending_ = std::current_exception();
+      XML_StopParser(me->parser_, XML_FALSE);
+    }
+  }
   static void on_start(void* self, const char* name, const char** attributes) {
-    static_cast<CityGmlParser*>(self)->start(local_name(name), attributes);
+    guarded(self, [&](CityGmlParser& me) { me.start(local_name(name), attributes); });
   }
   static void on_end(void* self, const char* name) {
-    static_cast<CityGmlParser*>(self)->end(local_name(name));
+    guarded(self, [&](CityGmlParser& me) { me.end(local_name(name)); });
   }
   static void on_text(void* self, const char* s, int n) {
-    auto* me = static_cast<CityGmlParser*>(self);
-    if (me->collecting_) me->text_.append(s, static_cast<std::size_t>(n));
+    guarded(self, [&](CityGmlParser& me) {
+      if (me.collecting_) me.text_.append(s, static_cast<std::size_t>(n));
+    });
   }
 
   // Stops the parse with an InputError thrown once expat has returned (an exception must not
@@ -463,6 +480,7 @@ class CityGmlParser {
   const std::string& file_;
   XML_Parser parser_ = nullptr;
   std::optional<InputError> error_;
+  std::exception_ptr pending_;
   std::vector<std::string> names_;  // open elements
   std::vector<int> dimension_stack_;
   std::string crs_;
