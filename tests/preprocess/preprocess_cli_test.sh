@@ -9,12 +9,14 @@
 #   torn      the same after a torn last record and after a garbage tail; --resume without a
 #             journal simply bakes
 #   mismatch  a journal of other settings (or not a journal) is refused, exit 2, and kept
-#   failures  unwritable output/report, bad input, bad options: documented exit code, no output
+#   failures  unwritable output/report, bad input (JSON, CityGML, units), bad options: documented
+#             exit code, no output
 #   config    --config settings apply, the command line wins
 #   help      --help lists every option
 #   repairs   a broken ring is repaired and a building without height kept as an object that
 #             occludes nothing: listed in the summary and the report, present in the file
 #   payloads  --payload carries a property into the file (2.1) as each object's payload
+#   citygml   a CityGML district bakes with the defaults and validates with no miss
 #   terrain   --terrain DEM (an Esri ASCII grid of a slope): buildings and cells stand on it,
 #             the validator finds no miss; bad rasters exit 17; --cells FILE is --region FILE
 # Usage: preprocess_cli_test.sh CASE WORK_DIR PREPROCESS CITYGEN VALIDATE INSPECT BAD_INPUT_DIR
@@ -233,6 +235,13 @@ failures)
   grep -q 'geojson_bowtie.geojson: way/1001: invalid geometry: ring intersects itself' \
     stderr.txt || fail "the message does not name the building and the problem"
   absent bad.pvs bad.pvs.journal
+  expect 19 "malformed CityGML" -- "$preprocess" "$bad/citygml_mismatched_tag.gml" -o bad.pvs
+  grep -q 'citygml_mismatched_tag.gml: line 5, column 6: invalid XML: mismatched tag' \
+    stderr.txt || fail "the message does not name the line and the problem"
+  absent bad.pvs bad.pvs.journal
+  expect 13 "input in feet" -- "$preprocess" "$bad/geojson_crs_in_feet.geojson" -o bad.pvs
+  grep -q 'EPSG:2263 measures in US survey foot' stderr.txt || fail "the message does not say the unit"
+  absent bad.pvs bad.pvs.journal
   expect 2 "missing input file" -- "$preprocess" no_such_city.json -o bad.pvs
   expect 2 "no output given" -- "$preprocess" city.city.json
   expect 2 "pixel too large" -- "$preprocess" city.city.json -o bad.pvs --epsilon 1 --pixel 2
@@ -389,6 +398,20 @@ help)
                 --max-height --payload; do
     grep -q -- "$option" help.txt || fail "--help does not list $option"
   done
+  ;;
+
+citygml)
+  # A CityGML 2.0 district (two buildings, a building part, xlinks, a compound reference
+  # system) bakes with the defaults and the validator, reading the same file, finds no miss.
+  gml="$bad/../citygml/two_buildings.gml"
+  "$preprocess" "$gml" -o gml.pvs --quiet
+  "$inspect" gml.pvs > summary.txt
+  grep -q '^objects: *2$' summary.txt || fail "expected 2 objects: $(cat summary.txt)"
+  grep -q 'EPSG:25832' summary.txt || fail "the reference system is not EPSG:25832"
+  "$validate" "$gml" gml.pvs --viewpoints 200 --seed 5 > validate.txt \
+    || fail "validation failed: $(cat validate.txt)"
+  grep -q 'misses: 0' validate.txt || fail "misses: $(cat validate.txt)"
+  no_temporaries
   ;;
 
 *)
