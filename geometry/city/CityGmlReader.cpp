@@ -248,6 +248,7 @@ class CityGmlParser {
     if (const std::optional<int> lod = lod_property(n)) {
       contexts_.push_back({*lod, semantic_stack_.empty() ? "" : semantic_stack_.back()});
       context_depth_.push_back(names_.size());
+      add_reference(attributes);  // <bldg:lod2Solid xlink:href="#..."/>
       return;
     }
     if (polygon) {
@@ -267,16 +268,21 @@ class CityGmlParser {
       text_.clear();
       return;
     }
-    if (const char* href = attribute(attributes, "href");
-        href != nullptr && !contexts_.empty() && !object_stack_.empty()) {
-      std::string ref = href;
-      if (!ref.empty() && ref.front() == '#') ref.erase(0, 1);
-      Member m;
-      m.lod = contexts_.back().lod;
-      m.semantic = contexts_.back().semantic;
-      m.href = std::move(ref);
-      objects_[object_stack_.back()].members.push_back(std::move(m));
-    }
+    add_reference(attributes);
+  }
+
+  // An xlink:href inside a geometry property: a member of the current object's geometry at that
+  // LoD, resolved once the whole file is read (it may name something further on).
+  void add_reference(const char** attributes) {
+    const char* href = attribute(attributes, "href");
+    if (href == nullptr || contexts_.empty() || object_stack_.empty()) return;
+    std::string ref = href;
+    if (!ref.empty() && ref.front() == '#') ref.erase(0, 1);
+    Member m;
+    m.lod = contexts_.back().lod;
+    m.semantic = contexts_.back().semantic;
+    m.href = std::move(ref);
+    objects_[object_stack_.back()].members.push_back(std::move(m));
   }
 
   void end(std::string_view n) {

@@ -75,19 +75,19 @@ TEST(CityGml, ReadsPartsXlinksAndSemanticsOfAHandMadeDistrict) {
 TEST(CityGml, ReadsCityGml3BoundariesPartsAndReusedGeometry) {
   const City city = read_city({kTestData + "/citygml/citygml3_parts_and_reuse.gml"}, {});
   EXPECT_EQ(city.frame.crs, "EPSG:25833");
-  ASSERT_EQ(city.objects.size(), 2u);
+  ASSERT_EQ(city.objects.size(), 3u);
   // The house's six surfaces (the solid names them again, by xlink to a MultiSurface and to
   // thematic surfaces: taken once) and its tower's six.
   const CityObject& house = object_named(city, "house3");
   EXPECT_EQ(house.surfaces.size(), 12u);
   using Prisms = std::vector<std::pair<double, double>>;
   EXPECT_EQ(prisms_of(house), (Prisms{{12.0, 120.0}, {20.0, 16.0}}));
-  // The second building is the tower's shell again: the same prism.
-  const CityObject& reuse = object_named(city, "reuse");
-  EXPECT_EQ(reuse.surfaces.size(), 6u);
-  ASSERT_EQ(reuse.occluders.size(), 1u);
-  EXPECT_DOUBLE_EQ(reuse.occluders[0].top_z - reuse.occluders[0].ground_z, 20.0);
-  EXPECT_DOUBLE_EQ(area(reuse.occluders[0].footprint), 16.0);
+  // The other two buildings are the tower's solid again: the same prism.
+  for (const char* id : {"reuse", "reuse_by_property"}) {
+    const CityObject& reuse = object_named(city, id);
+    EXPECT_EQ(reuse.surfaces.size(), 6u) << id;
+    EXPECT_EQ(prisms_of(reuse), (Prisms{{20.0, 16.0}})) << id;
+  }
 }
 
 TEST(CityGml, ReadsTheReliefAsTerrainAndListsOtherObjectsAsIgnored) {
