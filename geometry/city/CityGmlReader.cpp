@@ -198,6 +198,16 @@ class CityGmlParser {
       dimension_stack_.push_back(std::atoi(d));
     else
       dimension_stack_.push_back(dimension_stack_.empty() ? 3 : dimension_stack_.back());
+    if (names_.size() == 1 && n != "CityModel" && n != "FeatureCollection" && n != "Building") {
+      // XML, but no CityGML: said as such, not as a city without buildings. (The stacks stay
+      // balanced: expat may still report this element's end.)
+      fail(InputProblem::UnsupportedFormat, "",
+           n == "osm"
+               ? "OpenStreetMap XML: name the file .osm (or .osm.gz, .osm.bz2)"
+               : "XML whose root element is <" + std::string(n) + ">, not a CityGML CityModel");
+      excluded_depth_ = 1;
+      return;
+    }
     if (excluded_depth_ > 0) {
       ++excluded_depth_;
       return;
