@@ -404,6 +404,15 @@ class CityGmlParser {
     doc["type"] = "CityJSON";
     doc["version"] = "1.0";
     if (!crs_.empty()) doc["metadata"]["referenceSystem"] = crs_;
+    // GML writes coordinates in the axis order of the reference system: latitude first for
+    // EPSG:4326 and EPSG:4979 (OGC:CRS84 is longitude first), where CityJSON has x = longitude.
+    if (!crs_.empty() && crs_.find("CRS84") == std::string::npos) {
+      try {
+        const std::string c = normalise_crs(crs_, file_);
+        latitude_first_ = c == "EPSG:4326" || c == "EPSG:4979";
+      } catch (const InputError&) {  // the CityJSON reader names an unknown system itself
+      }
+    }
     Json& city_objects = doc["CityObjects"] = Json::object();
     Json vertices = Json::array();
     for (std::size_t i = 0; i < objects_.size(); ++i) {
@@ -466,7 +475,8 @@ class CityGmlParser {
           Json ring = Json::array();
           for (const Point& v : r) {
             ring.push_back(vertices.size());
-            vertices.push_back(Json::array({v[0], v[1], v[2]}));
+            vertices.push_back(latitude_first_ ? Json::array({v[1], v[0], v[2]})
+                                               : Json::array({v[0], v[1], v[2]}));
           }
           surface.push_back(std::move(ring));
         }
@@ -520,6 +530,7 @@ class CityGmlParser {
   Ring ring_;
   int excluded_depth_ = 0;
   bool collecting_ = false;
+  bool latitude_first_ = false;  // the reference system's axes are latitude, longitude
   std::string text_;
 };
 

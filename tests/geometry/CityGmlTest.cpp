@@ -90,6 +90,21 @@ TEST(CityGml, ReadsCityGml3BoundariesPartsAndReusedGeometry) {
   }
 }
 
+TEST(CityGml, TakesLatitudeFirstInEpsg4979) {
+  // GML's axis order is the reference system's: latitude, longitude for EPSG:4979.
+  const City city = read_city({kTestData + "/citygml/latitude_first_epsg4979.gml"}, {});
+  ASSERT_EQ(city.objects.size(), 1u);
+  EXPECT_EQ(city.frame.kind, LocalFrame::Kind::Geographic);
+  EXPECT_NEAR(city.frame.origin_lat, 47.0, 1e-3);
+  EXPECT_NEAR(city.frame.origin_lon, 9.5, 1e-3);
+  const CityObject& o = city.objects[0];
+  ASSERT_EQ(o.occluders.size(), 1u);
+  // 10 x 10 m (swapped axes would give 13.7 x 7.3 m)
+  EXPECT_NEAR(o.bbox.xy.max.x - o.bbox.xy.min.x, 10.0, 0.05);
+  EXPECT_NEAR(o.bbox.xy.max.y - o.bbox.xy.min.y, 10.0, 0.05);
+  EXPECT_NEAR(o.occluders[0].top_z - o.occluders[0].ground_z, 15.0, 1e-6);
+}
+
 TEST(CityGml, ReadsTheReliefAsTerrainAndListsOtherObjectsAsIgnored) {
   const City city = read_city({kTestData + "/citygml/building_on_relief.gml"}, {});
   ASSERT_EQ(city.objects.size(), 1u);
