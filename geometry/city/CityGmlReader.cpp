@@ -98,22 +98,13 @@ std::optional<int> lod_property(std::string_view n) {
   return n[3] - '0';
 }
 
-// Reference systems as CityGML files name them. Compound ones ("urn:ogc:def:crs,crs:EPSG::25832,
-// crs:EPSG::7837") give their horizontal part first; the German surveying offices' own names
-// ("urn:adv:crs:ETRS89_UTM32*DE_DHHN2016_NH") name the UTM zone on ETRS89.
+// Reference systems as CityGML files name them: the German surveying offices' own names
+// ("urn:adv:crs:ETRS89_UTM32*DE_DHHN2016_NH") name the UTM zone on ETRS89; everything else,
+// compound URNs included, is normalise_crs's.
 std::string horizontal_crs(const std::string& name) {
   if (name.find("ETRS89_UTM32") != std::string::npos) return "EPSG:25832";
   if (name.find("ETRS89_UTM33") != std::string::npos) return "EPSG:25833";
-  if (name.find(",crs:") != std::string::npos) {
-    std::size_t start = 0;
-    while (start <= name.size()) {
-      const std::size_t end = std::min(name.find(',', start), name.size());
-      const std::string part = name.substr(start, end - start);
-      if (part.find("EPSG") != std::string::npos) return part;
-      start = end + 1;
-    }
-  }
-  return name;
+  return name;  // compound URNs: normalise_crs takes their horizontal part
 }
 
 class CityGmlParser {

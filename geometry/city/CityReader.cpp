@@ -61,6 +61,14 @@ std::string normalise_crs(const std::string& name, const std::string& file) {
     return code;
   };
   if (name.find("CRS84") != std::string::npos) return "OGC:CRS84";
+  // A compound URN ("urn:ogc:def:crs,crs:EPSG::25832,crs:EPSG::7837") names the horizontal
+  // system first: its code, not the height system's.
+  if (const auto comma = name.find(",crs:"); comma != std::string::npos) {
+    const auto end = name.find(',', comma + 1);
+    const std::string first =
+        name.substr(comma + 1, end == std::string::npos ? end : end - comma - 1);
+    if (first.find("EPSG") != std::string::npos) return normalise_crs(first, file);
+  }
   if (std::string code = code_after("EPSG"); !code.empty()) return "EPSG:" + code;
   throw InputError(InputProblem::UnknownCrs, file, "", "cannot interpret \"" + name + "\"");
 }
@@ -302,10 +310,9 @@ void check_metric(const detail::InputScan& scan, const std::string& name) {
   const char* unit = nullptr;
   const double metres = s.GetLinearUnits(&unit);
   if (std::abs(metres - 1) > 1e-9) {
-    char what[160];
+    char what[200];
     std::snprintf(what, sizeof what,
-                  " measures in %s (%.7g m), but every setting and the PVS "
-                  "file are in metres: ",
+                  " measures in %s (%.7g m), but every setting and the PVS file are in metres: ",
                   unit != nullptr ? unit : "a unit", metres);
     throw InputError(InputProblem::UnknownCrs, name, "", scan.crs + what + reproject);
   }
