@@ -14,6 +14,7 @@
 //    the polygons of what they name, and a polygon met twice in one LoD is taken once;
 //  - installations, rooms, furniture and openings are no volume a prism from the ground may
 //    fill (thesis 7.1): their polygons are not the building's;
+//  - generic attributes become attributes (what --payload reads);
 //  - a dem:TINRelief's triangles become a TINRelief, the terrain; other city objects (vegetation,
 //    bridges, roads) are listed as ignored types, as the CityJSON reader lists them.
 // The file is read with expat, a streaming parser: CityGML tiles run to hundreds of megabytes.
@@ -63,6 +64,7 @@ struct GmlObject {
   std::optional<std::size_t> parent;
   std::vector<Member> members;
   std::optional<double> measured_height;
+  std::vector<std::pair<std::string, std::string>> attributes;  // generic attributes, in order
 };
 
 // Names without their namespace prefix: "bldg:RoofSurface" -> "RoofSurface".
@@ -76,6 +78,12 @@ const char* attribute(const char** attributes, std::string_view wanted) {
   for (const char** a = attributes; *a != nullptr; a += 2)
     if (local_name(a[0]) == wanted) return a[1];
   return nullptr;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return {};
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
 }
 
 bool is_thematic_surface(std::string_view n) {
@@ -269,6 +277,19 @@ class CityGmlParser {
       text_.clear();
       return;
     }
+    // Generic attributes (for --payload): <gen:stringAttribute name="k"><gen:value>v</...> in
+    // CityGML 1.0/2.0, <gen:StringAttribute><gen:name>k</gen:name><gen:value>v</...> in 3.0.
+    if (n.size() > 9 && n.substr(n.size() - 9) == "Attribute" && !object_stack_.empty() &&
+        !generic_) {
+      const char* key = attribute(attributes, "name");
+      generic_ = Generic{key != nullptr ? key : "", "", names_.size()};
+      return;
+    }
+    if (generic_ && (n == "name" || n == "value")) {
+      collecting_ = true;
+      text_.clear();
+      return;
+    }
     add_reference(attributes);
   }
 
@@ -321,6 +342,17 @@ class CityGmlParser {
     if (n == "posList" || n == "pos" || n == "coordinates") {
       collecting_ = false;
       read_points(n == "coordinates", dimension);
+      return;
+    }
+    if (generic_ && (n == "name" || n == "value")) {
+      collecting_ = false;
+      (n == "name" ? generic_->key : generic_->value) = trimmed(text_);
+      return;
+    }
+    if (generic_ && generic_->depth == depth) {
+      if (!generic_->key.empty())
+        objects_[object_stack_.back()].attributes.push_back({generic_->key, generic_->value});
+      generic_.reset();
       return;
     }
     if (n == "measuredHeight") {
@@ -411,6 +443,7 @@ class CityGmlParser {
       Json obj;
       obj["type"] = o.type;
       if (o.measured_height) obj["attributes"]["measuredHeight"] = *o.measured_height;
+      for (const auto& [key, value] : o.attributes) obj["attributes"][key] = value;
       if (o.parent) obj["parents"] = Json::array({objects_[*o.parent].id});
       Json children = Json::array();
       for (const GmlObject& c : objects_)
@@ -521,6 +554,11 @@ class CityGmlParser {
   Ring ring_;
   int excluded_depth_ = 0;
   bool collecting_ = false;
+  struct Generic {  // a generic attribute being read
+    std::string key, value;
+    std::size_t depth;
+  };
+  std::optional<Generic> generic_;
   bool latitude_first_ = false;  // the reference system's axes are latitude, longitude
   std::string text_;
 };

@@ -66,11 +66,11 @@ SettingTable<ReadOptions> make_table() {
     r.roof_step = v;
   };
   t.push_back(std::move(roof));
-  auto payload = text_setting<R>(
-      "payload", S::Read,
-      "Attribute (CityJSON), property (GeoJSON) or tag (OSM) whose value each object carries "
-      "into the PVS file, e.g. a mesh or tile key",
-      [](R& r) -> std::string& { return r.payload_key; });
+  auto payload = text_setting<R>("payload", S::Read,
+                                 "Attribute (CityJSON), generic attribute (CityGML), property "
+                                 "(GeoJSON) or tag (OSM) whose value each object carries "
+                                 "into the PVS file, e.g. a mesh or tile key",
+                                 [](R& r) -> std::string& { return r.payload_key; });
   // The name is stored in the file, which holds only UTF-8: refuse it here, not after a bake.
   payload.set = [set = payload.set, key = payload.key](R& r, const std::string& text) {
     try {

@@ -90,6 +90,16 @@ TEST(CityGml, ReadsCityGml3BoundariesPartsAndReusedGeometry) {
   }
 }
 
+TEST(CityGml, GenericAttributesAreWhatPayloadReads) {
+  ReadOptions options;
+  options.payload_key = "tile";
+  const City two = read_city({kTestData + "/citygml/two_buildings.gml"}, options);
+  EXPECT_EQ(object_named(two, "DEBY_B1").payload, "tile-17");  // CityGML 2.0
+  EXPECT_EQ(object_named(two, "DEBY_B2").payload, "");
+  const City three = read_city({kTestData + "/citygml/citygml3_parts_and_reuse.gml"}, options);
+  EXPECT_EQ(object_named(three, "house3").payload, "tile-3");  // 3.0, white space trimmed
+}
+
 TEST(CityGml, TakesLatitudeFirstInEpsg4979) {
   // GML's axis order is the reference system's: latitude, longitude for EPSG:4979.
   const City city = read_city({kTestData + "/citygml/latitude_first_epsg4979.gml"}, {});

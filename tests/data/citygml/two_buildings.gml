@@ -3,8 +3,9 @@
      DEBY_B1, a gabled LoD2 house (10 x 8 m, ground 100 m, eaves 106 m, ridge 109 m) whose
      lod2Solid refers to its boundedBy polygons by xlink, with a balcony (an installation, not
      part of its volume); DEBY_B2, a LoD1 block (6 x 6 m, 12 m tall) with a LoD1 building part
-     (4 x 4 m, 20 m tall). The reference system is compound, as German LoD2 data gives it. -->
-<core:CityModel xmlns:core="http://www.opengis.net/citygml/2.0" xmlns:bldg="http://www.opengis.net/citygml/building/2.0" xmlns:gml="http://www.opengis.net/gml" xmlns:xlink="http://www.w3.org/1999/xlink">
+     (4 x 4 m, 20 m tall). The reference system is compound, as German LoD2 data gives it;
+     DEBY_B1 carries a generic attribute "tile" (what the payload option reads). -->
+<core:CityModel xmlns:core="http://www.opengis.net/citygml/2.0" xmlns:bldg="http://www.opengis.net/citygml/building/2.0" xmlns:gml="http://www.opengis.net/gml" xmlns:gen="http://www.opengis.net/citygml/generics/2.0" xmlns:xlink="http://www.w3.org/1999/xlink">
   <gml:boundedBy>
     <gml:Envelope srsName="urn:ogc:def:crs,crs:EPSG::25832,crs:EPSG::7837" srsDimension="3">
       <gml:lowerCorner>0 0 100</gml:lowerCorner>
@@ -13,6 +14,7 @@
   </gml:boundedBy>
   <core:cityObjectMember>
     <bldg:Building gml:id="DEBY_B1">
+      <gen:stringAttribute name="tile"><gen:value>tile-17</gen:value></gen:stringAttribute>
       <bldg:measuredHeight uom="urn:adv:uom:m">9</bldg:measuredHeight>
       <bldg:lod2Solid>
         <gml:Solid>
