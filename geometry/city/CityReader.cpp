@@ -416,7 +416,9 @@ City read_city(const std::vector<std::string>& paths, const ReadOptions& options
   Reader reader{options, {}, {}, {}};
   for (const std::string& p : paths)
     reader.add(detail::is_osm_file(p) ? detail::read_osm(p, reader.city.report)
-                                      : parse(detail::read_input_file(p), p),
+               : detail::is_gis_vector_file(p)
+                   ? detail::read_gis_vector(p, options, reader.city.report)
+                   : parse(detail::read_input_file(p), p),
                p);
   return reader.finish(paths.back());
 }

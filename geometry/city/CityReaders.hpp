@@ -81,6 +81,16 @@ bool is_osm_file(const std::string& path);
 /// multipolygons, members outside the extract) go to report.warnings, per element id.
 Json read_osm(const std::string& path, ReadReport& report);
 
+/// True for the names of the GIS vector files read through GDAL (.shp, .shz, .shp.zip, .gpkg,
+/// .fgb, .tab, .sqlite), whatever their case.
+bool is_gis_vector_file(const std::string& path);
+/// One layer of a GIS vector file (GisVectorReader.cpp) as a GeoJSON FeatureCollection: the
+/// layer options.layer names, else the only one of polygons (InputError BadStructure when there
+/// are several, EmptyCity when there is none). Fields become properties; coordinates stay in a
+/// projected system in metres with an EPSG code and are transformed to WGS84 lon/lat from any
+/// other (noted in report.warnings). Features without polygons are left out and counted there.
+Json read_gis_vector(const std::string& path, const ReadOptions& options, ReadReport& report);
+
 /// Turns `o` into a non-occluding object: no occluders, its surfaces block nothing in
 /// validation, its footprint (its box's rectangle when it has none) is taken out of free space
 /// (no view cell inside a building), and `why` is listed in report.non_occluding.

@@ -11,14 +11,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <vector>
 
+#include "GdalHandles.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
 
 namespace urbanpvs::geometry {
 namespace {
+
+using detail::crs_name;
+using detail::DatasetCloser;
+using detail::QuietGdal;
+using detail::TransformDeleter;
 
 // The TIN stays within a few hundred MB: 1M nodes are 2M triangles of 72 bytes, held by the city
 // and again by the ground model. A 10 km city still gets a 10 m grid.
@@ -27,41 +32,6 @@ constexpr double kMaxNodes = 1.0e6;
 constexpr double kMaxPixels = 32.0e6;
 // No grid finer than this: the ground under a viewer does not need centimetres.
 constexpr double kMinSpacing = 0.5;  // [Units: m]
-
-// GDAL reports errors through a global handler that prints to stderr; the reader reports them
-// itself, as an InputError, so they are silenced while it works.
-struct QuietGdal {
-  QuietGdal() {
-    static std::once_flag registered;
-    std::call_once(registered, [] { GDALAllRegister(); });
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-  }
-  ~QuietGdal() { CPLPopErrorHandler(); }
-  QuietGdal(const QuietGdal&) = delete;
-  QuietGdal& operator=(const QuietGdal&) = delete;
-  static std::string last() {
-    const char* m = CPLGetLastErrorMsg();
-    return m && *m ? std::string(": ") + m : std::string();
-  }
-};
-
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-struct TransformDeleter {
-  void operator()(OGRCoordinateTransformation* t) const {
-    OGRCoordinateTransformation::DestroyCT(t);
-  }
-};
-
-std::string crs_name(const OGRSpatialReference& s) {
-  const char* name = s.GetAuthorityName(nullptr);
-  const char* code = s.GetAuthorityCode(nullptr);
-  if (name && code) return std::string(name) + ":" + code;
-  const char* n = s.GetName();
-  return n ? n : "(unnamed)";
-}
 
 // The city's horizontal reference system, as GDAL knows it; false when the city names none.
 bool city_crs(const LocalFrame& frame, OGRSpatialReference& s) {

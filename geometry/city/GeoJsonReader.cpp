@@ -155,6 +155,8 @@ struct HeightReader {
   }
 
   void read(const Json& props, Feature& f) {
+    if (!options.height_field.empty())  // the dataset's own name for it comes first
+      f.height = positive(props, options.height_field.c_str(), f);
     for (const char* key : {"height", "building:height", "measuredHeight"})
       if (!f.height) f.height = positive(props, key, f);
     if (std::optional<double> levels = positive(props, "building:levels", f))
@@ -313,12 +315,14 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
   }
   o.bbox.extend(f.box.min, f.min_height);
   o.bbox.extend(f.box.max, std::max(h, f.min_height));
+  const std::string none = "no " +
+                           (options.height_field.empty() ? "" : options.height_field + ", ") +
+                           "height, building:height, measuredHeight or building:levels";
   if (!height && options.strict)
     throw InputError(InputProblem::MissingHeight, file, f.id,
-                     "no height, building:height, measuredHeight or building:levels "
-                     "(give a default height; --strict refuses objects of unknown height)");
+                     none + " (give a default height; --strict refuses objects of unknown height)");
   if (!height)
-    return file + ": " + f.id + ": no height, building:height, measuredHeight or building:levels" +
+    return file + ": " + f.id + ": " + none +
            (f.refused_height.empty() ? ""
                                      : " (" + f.refused_height + " is no height: not positive)") +
            " (and no --default-height)";

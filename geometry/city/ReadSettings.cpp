@@ -81,6 +81,15 @@ SettingTable<ReadOptions> make_table() {
     set(r, text);
   };
   t.push_back(std::move(payload));
+  t.push_back(text_setting<R>("height-field", S::Read,
+                              "GeoJSON property, GIS field or OSM tag holding each building's "
+                              "height (e.g. HOEHE), tried before height, building:height and "
+                              "measuredHeight",
+                              [](R& r) -> std::string& { return r.height_field; }));
+  t.push_back(text_setting<R>("layer", S::Read,
+                              "Layer of a GeoPackage (or other GIS file) to read; needed when it "
+                              "has several layers of polygons",
+                              [](R& r) -> std::string& { return r.layer; }));
   auto terrain = path_setting<R>(
       "terrain", S::Read,
       "DEM raster (GeoTIFF, SRTM .hgt; read with GDAL) that GeoJSON/OSM buildings stand on and "

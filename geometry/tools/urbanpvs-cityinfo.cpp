@@ -122,7 +122,8 @@ std::string svg_of(const City& city, const std::vector<Block>& blocks,
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Reads city models (CityJSON, CityGML, GeoJSON, OpenStreetMap) and reports objects, heights, "
+      "Reads city models (CityJSON, CityGML, GeoJSON, OpenStreetMap, Shapefile, GeoPackage, "
+      "FlatGeobuf) and reports objects, heights, "
       "blocks and shrunk occluders."};
   std::vector<std::string> files;
   ReadOptions read;

@@ -126,8 +126,9 @@ std::optional<int> parse_preprocess_command_line(int argc, const char* const* ar
   const PreprocessRequest defaults = r;
 
   app.add_option("CITY", r.inputs,
-                 "City files: CityJSON 1.0-2.0 (or .city.jsonl), CityGML 1.0-3.0, GeoJSON or "
-                 "OpenStreetMap, all in one coordinate system")
+                 "City files: CityJSON 1.0-2.0 (or .city.jsonl), CityGML 1.0-3.0, GeoJSON, "
+                 "OpenStreetMap, Shapefile, GeoPackage or FlatGeobuf, all in one coordinate "
+                 "system")
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("-o,--output", r.output, "PVS file to write; the journal is OUT.journal")

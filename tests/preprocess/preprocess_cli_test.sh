@@ -414,6 +414,29 @@ citygml)
   no_temporaries
   ;;
 
+gis)
+  # A shapefile (ETRS89 / UTM 32N in Esri's WKT, no EPSG code in it; the height in a field of
+  # its own, HOEHE; a shed without height) bakes with --height-field and the validator, reading
+  # the same file with the same option, finds no miss. A layer it does not have exits 12.
+  shp="$bad/../gis/district.shp"
+  "$preprocess" "$shp" -o shp.pvs --height-field HOEHE --quiet || fail "the shapefile did not bake"
+  "$inspect" shp.pvs > summary.txt
+  grep -q '^objects: *6$' summary.txt || fail "expected 6 objects: $(cat summary.txt)"
+  grep -q 'EPSG:25832' summary.txt || fail "the reference system is not EPSG:25832"
+  "$validate" "$shp" shp.pvs --height-field HOEHE --viewpoints 200 --seed 5 > validate.txt \
+    || fail "validation failed: $(cat validate.txt)"
+  grep -q 'misses: 0' validate.txt || fail "misses: $(cat validate.txt)"
+  set +e
+  "$preprocess" "$shp" -o layer.pvs --layer roofs --quiet 2> layer.err
+  code=$?
+  set -e
+  [ "$code" = 12 ] || fail "--layer roofs: exit $code, expected 12"
+  grep -qF "district.shp: unexpected structure: no layer \"roofs\" (layers: district)" layer.err \
+    || fail "--layer roofs: $(cat layer.err)"
+  absent layer.pvs
+  no_temporaries
+  ;;
+
 *)
   fail "unknown case $case_name"
   ;;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Reads city models into a City: CityJSON 1.1/2.0 (.city.json, .json) and GeoJSON (.geojson).
+// Reads city models into a City: CityJSON, CityGML, GeoJSON, OpenStreetMap and the vector
+// formats of GIS (Shapefile, GeoPackage, FlatGeobuf) through GDAL.
 // The format is recognised from the content, not the extension.
 #pragma once
 
@@ -36,6 +37,13 @@ struct ReadOptions {
   /// object carries as its payload (CityObject::payload): a key a renderer finds its mesh or
   /// tile by. Empty: no payloads.
   std::string payload_key;
+  /// GeoJSON property, GIS field or OSM tag that holds each building's height (a length, as
+  /// `height`: "12", "12.5 m", "40 ft"), tried before height, building:height and
+  /// measuredHeight. For datasets that name it their own way ("HOEHE", "h_max"). Empty: none.
+  std::string height_field;
+  /// The layer of a GIS vector file (GeoPackage, ...) to read. Empty: the only layer of
+  /// polygons; a file with several must be told which.
+  std::string layer;
   /// A digital elevation model (any raster GDAL reads: GeoTIFF, SRTM .hgt) that becomes the
   /// city's terrain (DemTerrain.hpp), replacing a CityJSON TINRelief: GeoJSON and OpenStreetMap
   /// buildings stand on it and view cells follow it. Empty: none.
