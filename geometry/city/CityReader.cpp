@@ -14,6 +14,7 @@
 
 #include "BoxGrid.hpp"
 #include "CityReaders.hpp"
+#include "GdalHandles.hpp"
 #include "urbanpvs/geometry/city/DemTerrain.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
@@ -288,7 +289,8 @@ void place_on_terrain(City& city, const std::vector<bool>& relative) {
 // Every stage works in metres: ε, the cell edges, the eye band and the PVS file's frame. A
 // projected system that measures in feet (the US state planes, e.g. EPSG:2263) read as metres
 // would bake a city 3.28 times its size for viewers 0.6 m tall, and a geographic system other
-// than WGS84 lon/lat would be read as metres: both are refused, saying what to do. Systems PROJ
+// than WGS84 lon/lat would be read as metres, and Mercator metres are not metres either: all
+// are refused, saying what to do. Systems PROJ
 // does not know are taken as metres, as the file says nothing else.
 void check_metric(const detail::InputScan& scan, const std::string& name) {
   if (scan.kind != LocalFrame::Kind::Projected || scan.crs.rfind("EPSG:", 0) != 0) return;
@@ -307,6 +309,12 @@ void check_metric(const detail::InputScan& scan, const std::string& name) {
   if (s.IsGeographic())
     throw InputError(InputProblem::UnknownCrs, name, "",
                      scan.crs + " is geographic (degrees) but not WGS84 lon/lat: " + reproject);
+  if (detail::is_mercator(s))
+    throw InputError(InputProblem::UnknownCrs, name, "",
+                     scan.crs +
+                         " is a Mercator projection, whose metres grow with the latitude (twice "
+                         "the true length at 60°): " +
+                         reproject);
   const char* unit = nullptr;
   const double metres = s.GetLinearUnits(&unit);
   if (std::abs(metres - 1) > 1e-9) {

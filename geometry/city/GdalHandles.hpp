@@ -41,6 +41,16 @@ struct TransformDeleter {
   }
 };
 
+/// Web Mercator (EPSG:3857, the web maps' system) and the other Mercators measure in "metres"
+/// that are 1/cos(latitude) true metres: a city read in them is too large in plan, not in
+/// height, so the readers never take them as metres.
+inline bool is_mercator(const OGRSpatialReference& s) {
+  const char* method = s.GetAttrValue("PROJECTION");
+  if (method == nullptr) return false;
+  const std::string m = method;
+  return m.rfind("Mercator", 0) == 0 || m.find("Pseudo_Mercator") != std::string::npos;
+}
+
 /// "EPSG:25832" where the system names its authority, else its name.
 inline std::string crs_name(const OGRSpatialReference& s) {
   const char* name = s.GetAuthorityName(nullptr);

@@ -154,9 +154,13 @@ struct HeightReader {
     return v;
   }
 
+  std::size_t with_height_field = 0;  ///< features that have options.height_field
+
   void read(const Json& props, Feature& f) {
-    if (!options.height_field.empty())  // the dataset's own name for it comes first
+    if (!options.height_field.empty()) {  // the dataset's own name for it comes first
+      if (given(props, options.height_field.c_str())) ++with_height_field;
       f.height = positive(props, options.height_field.c_str(), f);
+    }
     for (const char* key : {"height", "building:height", "measuredHeight"})
       if (!f.height) f.height = positive(props, key, f);
     if (std::optional<double> levels = positive(props, "building:levels", f))
@@ -470,6 +474,9 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
       buildings.push_back(std::move(f));
     }
   });
+  if (!options.height_field.empty() && heights.with_height_field == 0)
+    report.warnings.push_back(file + ": --height-field " + options.height_field +
+                              ": no feature has this property, field or tag");
 
   // Attach each part to the smallest building outline that contains it.
   std::vector<std::vector<Feature*>> parts_of(buildings.size());

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -50,6 +51,15 @@ bool is_polygonal(OGRwkbGeometryType t) {
   }
 }
 
+// A polygon standing on edge in plan (a wall of an Esri multipatch or a PolyhedralSurface): it
+// has no area to stand on, and the GeoJSON rules would take it for a broken footprint.
+bool vertical(const OGRLinearRing& ring) {
+  double perimeter = 0;
+  for (int i = 1; i < ring.getNumPoints(); ++i)
+    perimeter += std::hypot(ring.getX(i) - ring.getX(i - 1), ring.getY(i) - ring.getY(i - 1));
+  return !(std::abs(ring.get_Area()) > 1e-9 * perimeter * perimeter);
+}
+
 Json ring_json(const OGRLinearRing& ring) {
   Json out = Json::array();
   for (int i = 0; i < ring.getNumPoints(); ++i)
@@ -58,24 +68,25 @@ Json ring_json(const OGRLinearRing& ring) {
 }
 
 // The polygons of `g` as GeoJSON MultiPolygon coordinates; collections are searched, curves were
-// linearised before. Returns false when `g` holds no polygon at all.
-bool add_polygons(const OGRGeometry& g, Json& polygons) {
+// linearised before. Empty and vertical polygons are counted in `vertical_count`, not added.
+void add_polygons(const OGRGeometry& g, Json& polygons, std::size_t& vertical_count) {
   const OGRwkbGeometryType t = wkbFlatten(g.getGeometryType());
   if (t == wkbPolygon) {
     const auto& p = *g.toPolygon();
-    if (p.getExteriorRing() == nullptr || p.getExteriorRing()->IsEmpty()) return false;
-    Json rings = Json::array({ring_json(*p.getExteriorRing())});
+    const OGRLinearRing* outer = p.getExteriorRing();
+    if (outer == nullptr || outer->IsEmpty()) return;
+    if (vertical(*outer)) {
+      ++vertical_count;
+      return;
+    }
+    Json rings = Json::array({ring_json(*outer)});
     for (int k = 0; k < p.getNumInteriorRings(); ++k)
-      rings.push_back(ring_json(*p.getInteriorRing(k)));
+      if (!p.getInteriorRing(k)->IsEmpty()) rings.push_back(ring_json(*p.getInteriorRing(k)));
     polygons.push_back(std::move(rings));
-    return true;
+  } else if (t == wkbMultiPolygon || t == wkbGeometryCollection) {
+    for (const OGRGeometry* part : *g.toGeometryCollection())
+      add_polygons(*part, polygons, vertical_count);
   }
-  if (t == wkbMultiPolygon || t == wkbGeometryCollection) {
-    bool any = false;
-    for (const OGRGeometry* part : *g.toGeometryCollection()) any |= add_polygons(*part, polygons);
-    return any;
-  }
-  return false;
 }
 
 // A field as the JSON value a GeoJSON writer would give it; null when unset or null.
@@ -141,12 +152,22 @@ LayerSystem layer_system(OGRLayer& layer, const std::string& path) {
   auto name = [](const char* text) {
     return Json{{"type", "name"}, {"properties", {{"name", text}}}};
   };
-  if (s.IsProjected() && std::abs(s.GetLinearUnits() - 1) < 1e-9) {
-    if (s.GetAuthorityCode(nullptr) == nullptr) s.AutoIdentifyEPSG();
-    const char* auth = s.GetAuthorityName(nullptr);
-    const char* code = s.GetAuthorityCode(nullptr);
-    if (auth != nullptr && code != nullptr && std::strcmp(auth, "EPSG") == 0) {
-      out.crs = name(("EPSG:" + std::string(code)).c_str());
+  if (s.IsProjected() && std::abs(s.GetLinearUnits() - 1) < 1e-9 && !is_mercator(s)) {
+    // A system given only as WKT (a GeoPackage's own definition, a MapInfo file) keeps its
+    // EPSG code where PROJ's catalogue matches it with confidence.
+    std::string code;
+    if (const char* a = s.GetAuthorityName(nullptr); a != nullptr && std::strcmp(a, "EPSG") == 0)
+      code = s.GetAuthorityCode(nullptr) != nullptr ? s.GetAuthorityCode(nullptr) : "";
+    if (code.empty()) {
+      if (OGRSpatialReference* match = s.FindBestMatch(90, "EPSG", nullptr)) {
+        const char* a = match->GetAuthorityName(nullptr);
+        const char* c = match->GetAuthorityCode(nullptr);
+        if (a != nullptr && c != nullptr && std::strcmp(a, "EPSG") == 0) code = c;
+        match->Release();
+      }
+    }
+    if (!code.empty()) {
+      out.crs = name(("EPSG:" + code).c_str());
       return out;
     }
   }
@@ -162,7 +183,9 @@ LayerSystem layer_system(OGRLayer& layer, const std::string& path) {
   const char* unit = nullptr;
   if (s.IsProjected()) s.GetLinearUnits(&unit);
   out.note = path + ": " + crs_name(s) +
-             (unit != nullptr && s.IsProjected() ? std::string(" (in ") + unit + ")" : "") +
+             (is_mercator(s)                       ? std::string(" (Mercator)")
+              : unit != nullptr && s.IsProjected() ? std::string(" (in ") + unit + ")"
+                                                   : std::string()) +
              " transformed to WGS84 lon/lat";
   return out;
 }
@@ -191,17 +214,17 @@ Json read_gis_vector(const std::string& path, const ReadOptions& options, ReadRe
   if (!system.note.empty()) report.warnings.push_back(system.note);
 
   OGRFeatureDefn& defn = *layer.GetLayerDefn();
-  // Ids: the layer's own "id" (or OSM export's "@id") field where it has one, as the GeoJSON
-  // reader takes them (a GeoJSON turned into a GeoPackage keeps string ids there), else the
-  // feature id (FID), the key GIS tools show.
-  const bool id_field = defn.GetFieldIndex("id") >= 0 || defn.GetFieldIndex("@id") >= 0;
   Json features = Json::array();
-  std::size_t without = 0, untransformed = 0;
+  std::size_t without = 0, untransformed = 0, walls = 0, index = 0;
   std::string first_without, first_untransformed;
   layer.ResetReading();
+  CPLErrorReset();
   for (auto& f : layer) {
-    const std::string fid = std::to_string(f->GetFID());
-    std::unique_ptr<OGRGeometry> geometry(f->StealGeometry());
+    // Formats without feature ids give none (OGRNullFID): the position in the layer then.
+    const std::string fid =
+        std::to_string(f->GetFID() != OGRNullFID ? f->GetFID() : GIntBig(index));
+    ++index;
+    OGRGeometryUniquePtr geometry(f->StealGeometry());
     if (geometry && geometry->hasCurveGeometry())
       geometry.reset(geometry->getLinearGeometry());  // arcs as segments
     if (geometry && system.to_wgs84 && geometry->transform(system.to_wgs84.get()) != OGRERR_NONE) {
@@ -209,7 +232,8 @@ Json read_gis_vector(const std::string& path, const ReadOptions& options, ReadRe
       continue;
     }
     Json polygons = Json::array();
-    if (!geometry || !add_polygons(*geometry, polygons)) {
+    if (geometry) add_polygons(*geometry, polygons, walls);
+    if (polygons.empty()) {
       if (without++ == 0) first_without = fid;
       continue;
     }
@@ -222,15 +246,34 @@ Json read_gis_vector(const std::string& path, const ReadOptions& options, ReadRe
     Json feature = {{"type", "Feature"},
                     {"properties", std::move(properties)},
                     {"geometry", {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}}}};
-    if (!id_field) feature["id"] = fid;
+    // Ids: a feature's own "id" (or an OSM export's "@id") field, as the GeoJSON reader takes
+    // them (a GeoJSON turned into a GeoPackage keeps string ids there), else its FID, the key
+    // GIS tools show. Matched exactly: ArcGIS's "Id" field of zeros is no id.
+    const Json& p = feature["properties"];
+    auto named = [&](const char* key) {
+      const auto it = p.find(key);
+      return it != p.end() && !(it->is_string() && it->get_ref<const std::string&>().empty());
+    };
+    if (!named("id") && !named("@id")) feature["id"] = fid;
     features.push_back(std::move(feature));
   }
+  // A damaged record ends the loop as the end of the layer would: say so, rather than bake a
+  // part of the city.
+  if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
+    throw InputError(
+        InputProblem::Unreadable, path, layer.GetName(),
+        "reading stopped after " + std::to_string(index) + " features" + QuietGdal::last());
   const std::string in = path + ": layer " + layer.GetName() + ": ";
   if (without)
     report.warnings.push_back(in + std::to_string(without) +
-                              " feature(s) without polygons (points, lines, 3D multipatches or "
-                              "no geometry; first FID " +
+                              " feature(s) without polygons (points, lines, no geometry; first "
+                              "FID " +
                               first_without + ") left out");
+  if (walls)
+    report.warnings.push_back(in + std::to_string(walls) +
+                              " vertical polygon(s) (walls of 3D surfaces such as Esri "
+                              "multipatches) left out; the rest of such a feature is read as "
+                              "its footprint");
   if (untransformed)
     report.warnings.push_back(in + std::to_string(untransformed) +
                               " feature(s) PROJ could not transform to WGS84 (first FID " +

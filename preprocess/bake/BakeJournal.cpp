@@ -9,12 +9,16 @@
 #include <chrono>
 #include <cstring>
 
+#include "Leb128.hpp"
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
 #include "urbanpvs/preprocess/visibility/CellCounters.hpp"
 #include "urbanpvs/runtime/Crc32c.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
+
+using detail::put_varint;
+using detail::VarintReader;
 
 constexpr unsigned char kMagic[8] = {'U', 'P', 'V', 'S', 'J', 'R', 'N', 'L'};
 constexpr std::uint32_t kCounterFieldCount = kCellCounterFields.size();
@@ -28,13 +32,6 @@ void put_u32(std::vector<unsigned char>& out, std::uint32_t v) {
 void put_u64(std::vector<unsigned char>& out, std::uint64_t v) {
   for (int i = 0; i < 8; ++i) out.push_back(static_cast<unsigned char>(v >> (8 * i)));
 }
-void put_varint(std::vector<unsigned char>& out, std::uint64_t v) {
-  while (v >= 0x80) {
-    out.push_back(static_cast<unsigned char>(v | 0x80));
-    v >>= 7;
-  }
-  out.push_back(static_cast<unsigned char>(v));
-}
 std::uint32_t get_u32(const unsigned char* p) {
   std::uint32_t v = 0;
   for (int i = 0; i < 4; ++i) v |= std::uint32_t{p[i]} << (8 * i);
@@ -45,28 +42,6 @@ std::uint64_t get_u64(const unsigned char* p) {
   for (int i = 0; i < 8; ++i) v |= std::uint64_t{p[i]} << (8 * i);
   return v;
 }
-
-// Reads LEB128 varints from a bounded span; any overrun or over-long encoding fails.
-class VarintReader {
- public:
-  VarintReader(const unsigned char* p, std::size_t n) : p_(p), end_(p + n) {}
-  bool next(std::uint64_t& v) {
-    v = 0;
-    for (int shift = 0; shift < 64; shift += 7) {
-      if (p_ == end_) return false;
-      const unsigned char b = *p_++;
-      if (shift == 63 && b > 1) return false;
-      v |= std::uint64_t{b & 0x7fu} << shift;
-      if (!(b & 0x80)) return true;
-    }
-    return false;
-  }
-  bool at_end() const { return p_ == end_; }
-
- private:
-  const unsigned char* p_;
-  const unsigned char* end_;
-};
 
 // Decodes one payload; false when it does not describe a cell of this bake.
 bool decode_payload(const unsigned char* p, std::size_t n, const JournalIdentity& id,
@@ -146,7 +121,8 @@ void encode_journal_record(const JournalRecord& r, std::vector<unsigned char>& o
 }
 
 JournalContents decode_journal(std::span<const unsigned char> bytes,
-                               const JournalIdentity& expected, const std::string& name) {
+                               const JournalIdentity& expected, const std::string& name,
+                               const JournalRecordSink& sink) {
   const unsigned char* p = bytes.data();
   if (bytes.size() < sizeof kMagic || std::memcmp(p, kMagic, sizeof kMagic) != 0)
     throw JournalMismatch(name + ": not an urbanpvs-preprocess journal");
@@ -177,8 +153,12 @@ JournalContents decode_journal(std::span<const unsigned char> bytes,
     if (n > max_payload || bytes.size() - at - 8 < n) break;
     if (get_u32(p + at + 4 + n) != runtime::crc32c(p + at, 4 + std::size_t{n})) break;
     if (!decode_payload(p + at + 4, n, found, record)) break;
-    out.records.push_back(std::move(record));
-    record = {};
+    if (sink) {
+      sink(record);
+    } else {
+      out.records.push_back(std::move(record));
+      record = {};
+    }
     at += 8 + std::size_t{n};
   }
   out.valid_bytes = at;
@@ -222,7 +202,8 @@ std::unique_ptr<BakeJournal> BakeJournal::create(const std::string& path,
 
 std::unique_ptr<BakeJournal> BakeJournal::reopen(const std::string& path,
                                                  const JournalIdentity& identity,
-                                                 JournalContents& contents) {
+                                                 JournalContents& contents,
+                                                 const JournalRecordSink& sink) {
   const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
   if (fd < 0) throw JournalWriteError(path + ": cannot open the journal: " + errno_text());
   std::unique_ptr<BakeJournal> journal(new BakeJournal(path, fd));
@@ -236,7 +217,7 @@ std::unique_ptr<BakeJournal> BakeJournal::reopen(const std::string& path,
     bytes.insert(bytes.end(), chunk, chunk + n);
     offset += n;
   }
-  contents = decode_journal(bytes, identity, path);
+  contents = decode_journal(bytes, identity, path, sink);
   // New records must follow the valid prefix directly, not a torn record.
   if (contents.dropped_bytes > 0 && ::ftruncate(fd, static_cast<off_t>(contents.valid_bytes)) != 0)
     throw JournalWriteError(path + ": cannot cut off the journal's torn end: " + errno_text());

@@ -141,9 +141,27 @@ runtime::CellRecord BakeScene::cell_record(std::uint32_t cell,
 runtime::PvsBake BakeScene::pvs_file(std::vector<std::vector<std::uint32_t>> pvs,
                                      std::vector<std::pair<std::string, std::string>> properties,
                                      std::uint64_t input_hash) const {
-  if (pvs.size() != cell_count())
-    throw std::invalid_argument("BakeScene::pvs_file: " + std::to_string(pvs.size()) +
-                                " PVSs for " + std::to_string(cell_count()) + " cells");
+  runtime::PvsBake bake = pvs_file_without_lists(pvs.size(), std::move(properties), input_hash);
+  for (std::uint32_t c = 0; c < cell_count(); ++c) bake.cells[c].pvs = std::move(pvs[c]);
+  return bake;
+}
+
+runtime::PvsBake BakeScene::pvs_file(const CompactPvsStore& pvs,
+                                     std::vector<std::pair<std::string, std::string>> properties,
+                                     std::uint64_t input_hash) const {
+  runtime::PvsBake bake = pvs_file_without_lists(pvs.cells(), std::move(properties), input_hash);
+  bake.pvs_source = [&pvs](std::uint32_t cell, std::vector<std::uint32_t>& out) {
+    pvs.load(cell, out);
+  };
+  return bake;
+}
+
+runtime::PvsBake BakeScene::pvs_file_without_lists(
+    std::size_t lists, std::vector<std::pair<std::string, std::string>> properties,
+    std::uint64_t input_hash) const {
+  if (lists != cell_count())
+    throw std::invalid_argument("BakeScene::pvs_file: " + std::to_string(lists) + " PVSs for " +
+                                std::to_string(cell_count()) + " cells");
   runtime::PvsBake bake;
   bake.meta = metadata_of(*city_, options_);
   bake.meta.settings.input_hash = input_hash;
@@ -156,8 +174,7 @@ runtime::PvsBake BakeScene::pvs_file(std::vector<std::vector<std::uint32_t>> pvs
                             o.payload});
   bake.payload_key = city_->payload_key;
   bake.cells.reserve(cell_count());
-  for (std::uint32_t c = 0; c < cell_count(); ++c)
-    bake.cells.push_back(cell_record(c, std::move(pvs[c])));
+  for (std::uint32_t c = 0; c < cell_count(); ++c) bake.cells.push_back(cell_record(c, {}));
   return bake;
 }
 

@@ -18,6 +18,7 @@
 #include "urbanpvs/preprocess/bake/BakeJournal.hpp"
 #include "urbanpvs/preprocess/bake/BakeProgress.hpp"
 #include "urbanpvs/preprocess/bake/BakeReport.hpp"
+#include "urbanpvs/preprocess/bake/CompactPvsStore.hpp"
 #include "urbanpvs/preprocess/bake/DistributedBake.hpp"
 #include "urbanpvs/preprocess/bake/ParallelBake.hpp"
 #include "urbanpvs/runtime/PvsWriter.hpp"
@@ -95,9 +96,9 @@ class Run {
   std::uint64_t input_hash_ = 0;
   std::vector<std::pair<std::string, std::string>> settings_;
   std::unique_ptr<BakeJournal> journal_;
-  std::vector<std::vector<std::uint32_t>> pvs_;  // per cell, filled in any order
-  std::vector<CellCounters> counters_;           // per cell
-  std::vector<std::uint32_t> missing_;           // cells to compute, ascending
+  CompactPvsStore pvs_;                 // per cell, filled in any order
+  std::vector<CellCounters> counters_;  // per cell
+  std::vector<std::uint32_t> missing_;  // cells to compute, ascending
   BakeReport report_;
 };
 
@@ -161,24 +162,25 @@ void Run::open_journal(const BakeScene& scene) {
   report_.fingerprint = identity.fingerprint;
   const std::string path = request_.output + ".journal";
   const std::size_t cells = scene.cell_count();
-  pvs_.assign(cells, {});
+  pvs_ = CompactPvsStore(cells, static_cast<std::uint32_t>(city_.objects.size()));
   counters_.assign(cells, {});
   std::vector<char> have(cells, 0);
   std::error_code ec;
   if (request_.resume && fs::exists(path, ec)) {
     JournalContents contents;
+    // Straight into the compact store: the records as vectors could take gigabytes.
+    auto take = [&](JournalRecord& record) {
+      if (have[record.cell]) return;
+      have[record.cell] = 1;
+      pvs_.store(record.cell, record.pvs);
+      counters_[record.cell] = record.counters;
+      ++report_.cells_from_journal;
+    };
     try {
-      journal_ = BakeJournal::reopen(path, identity, contents);
+      journal_ = BakeJournal::reopen(path, identity, contents, take);
     } catch (const JournalMismatch& e) {
       throw Failure{kExitUsage,
                     std::string(e.what()) + "; delete it, or run without --resume to start over"};
-    }
-    for (JournalRecord& record : contents.records) {
-      if (have[record.cell]) continue;
-      have[record.cell] = 1;
-      pvs_[record.cell] = std::move(record.pvs);
-      counters_[record.cell] = record.counters;
-      ++report_.cells_from_journal;
     }
     note("resuming: %zu of %zu cells from %s%s", report_.cells_from_journal, cells, path.c_str(),
          contents.dropped_bytes > 0
@@ -201,7 +203,7 @@ void Run::compute_cells(const BakeScene& scene) {
     JournalRecord record{outcome.cell, std::move(outcome.pvs), outcome.counters};
     journal_->append(record);
     // Each cell has its own slot, written by exactly one thread: no lock needed.
-    pvs_[outcome.cell] = std::move(record.pvs);
+    pvs_.store(outcome.cell, record.pvs);
     counters_[outcome.cell] = outcome.counters;
   };
   auto tick = [&](std::size_t done) { progress.update(done); };
@@ -225,12 +227,11 @@ void Run::write_output(const BakeScene& scene) {
   properties.emplace_back("inputs", names);
   properties.emplace_back("input_hash", hex64(input_hash_));
   for (std::uint32_t c = 0; c < scene.cell_count(); ++c) {
-    report_.pvs_entries += pvs_[c].size();
-    report_.pvs_max = std::max<std::uint64_t>(report_.pvs_max, pvs_[c].size());
+    report_.pvs_entries += pvs_.size(c);
+    report_.pvs_max = std::max<std::uint64_t>(report_.pvs_max, pvs_.size(c));
     report_.counters += counters_[c];
   }
-  runtime::PvsBake bake =
-      scene.pvs_file(std::exchange(pvs_, {}), std::move(properties), input_hash_);
+  const runtime::PvsBake bake = scene.pvs_file(pvs_, std::move(properties), input_hash_);
   std::vector<std::byte> bytes;
   try {
     runtime::EncodeOptions options;

@@ -50,19 +50,19 @@ std::vector<std::uint32_t> processing_order(const std::vector<Neighbours>& neigh
 /// would be slightly smaller, which keeps later diffs short.
 class PayloadPlanner {
  public:
-  PayloadPlanner(const std::vector<CellRecord>& cells, const std::vector<Neighbours>& neighbours,
+  PayloadPlanner(const PvsLists& lists, const std::vector<Neighbours>& neighbours,
                  const EncodeOptions& options, bool coded)
-      : cells_(cells),
+      : lists_(lists),
         neighbours_(neighbours),
         coded_(coded),
         max_chain_(std::min(options.max_diff_chain, format::kMaxDiffChain)),
         threshold_(options.diff_threshold),
-        reference_(cells.size(), kNoCell),
-        depth_(cells.size(), 0),
-        done_(cells.size(), 0) {}
+        reference_(lists.size(), kNoCell),
+        depth_(lists.size(), 0),
+        done_(lists.size(), 0) {}
 
   std::vector<std::vector<unsigned char>> plan() {
-    std::vector<std::vector<unsigned char>> payloads(cells_.size());
+    std::vector<std::vector<unsigned char>> payloads(lists_.size());
     std::uint32_t previous = kNoCell;
     for (std::uint32_t cell : processing_order(neighbours_)) {
       payloads[cell] = encode_cell(cell, previous);
@@ -77,7 +77,8 @@ class PayloadPlanner {
  private:
   std::vector<unsigned char> encode_cell(std::uint32_t cell, std::uint32_t previous) {
     std::vector<unsigned char> full;
-    encode_full(cells_[cell].pvs, coded_, full);
+    const std::vector<std::uint32_t>& mine = lists_.get(cell, mine_);
+    encode_full(mine, coded_, full);
     if (max_chain_ == 0) return full;
     std::vector<unsigned char> best, diff;
     std::uint32_t best_reference = kNoCell;
@@ -85,8 +86,8 @@ class PayloadPlanner {
       if (depth_[candidate] >= max_chain_ || (coded_ && !coded_reference_fits(cell, candidate))) {
         continue;
       }
-      encode_diff(cell, candidate, neighbours_[cell], cells_[candidate].pvs, cells_[cell].pvs,
-                  coded_, diff);
+      encode_diff(cell, candidate, neighbours_[cell], lists_.get(candidate, theirs_), mine, coded_,
+                  diff);
       if (best_reference == kNoCell || diff.size() < best.size()) {
         best.swap(diff);
         best_reference = candidate;
@@ -115,7 +116,8 @@ class PayloadPlanner {
     return out;
   }
 
-  const std::vector<CellRecord>& cells_;
+  const PvsLists& lists_;
+  std::vector<std::uint32_t> mine_, theirs_;  ///< lists from the bake's source
   const std::vector<Neighbours>& neighbours_;
   bool coded_;
   std::uint32_t max_chain_;
@@ -332,10 +334,10 @@ std::uint32_t block_shift_for(const std::vector<std::uint64_t>& starts) {
 
 }  // namespace
 
-std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
+std::vector<unsigned char> write_pvs(const PvsLists& lists,
                                      const std::vector<Neighbours>& neighbours,
                                      const EncodeOptions& options, bool coded) {
-  PayloadPlanner planner(cells, neighbours, options, coded);
+  PayloadPlanner planner(lists, neighbours, options, coded);
   const std::vector<std::vector<unsigned char>> payloads = planner.plan();
   std::vector<std::uint64_t> starts(payloads.size() + 1, 0);
   for (std::size_t c = 0; c < payloads.size(); ++c) {
@@ -343,7 +345,7 @@ std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
     if (starts[c + 1] > UINT32_MAX) throw PvsWriteError("pvs: encoded PVS data exceeds 4 GiB");
   }
   ByteWriter w;
-  w.u32(static_cast<std::uint32_t>(cells.size()));
+  w.u32(static_cast<std::uint32_t>(lists.size()));
   w.u32(planner.max_chain());
   if (coded) {
     const std::uint32_t shift = block_shift_for(starts);

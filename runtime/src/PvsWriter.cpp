@@ -59,8 +59,8 @@ std::string validate_object(const ObjectRecord& o, std::size_t i) {
   return {};
 }
 
-std::string validate_cell(const CellRecord& c, std::size_t i, std::size_t cells,
-                          std::size_t objects) {
+std::string validate_cell(const CellRecord& c, const std::vector<std::uint32_t>& pvs, std::size_t i,
+                          std::size_t cells, std::size_t objects) {
   const std::string where = "cell " + std::to_string(i) + ": ";
   for (const Point2& p : c.triangle) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return where + "triangle not finite";
@@ -71,11 +71,11 @@ std::string validate_cell(const CellRecord& c, std::size_t i, std::size_t cells,
   for (std::uint32_t n : c.neighbours) {
     if (n != kNoCell && n >= cells) return where + "neighbour index out of range";
   }
-  for (std::size_t k = 0; k < c.pvs.size(); ++k) {
-    if (c.pvs[k] >= objects) {
+  for (std::size_t k = 0; k < pvs.size(); ++k) {
+    if (pvs[k] >= objects) {
       return where + "pvs entry " + std::to_string(k) + " is not an object index";
     }
-    if (k > 0 && c.pvs[k] <= c.pvs[k - 1]) {
+    if (k > 0 && pvs[k] <= pvs[k - 1]) {
       return where + "pvs not strictly increasing at position " + std::to_string(k);
     }
   }
@@ -118,8 +118,13 @@ std::string validate(const PvsBake& bake) {
       problem = "object " + std::to_string(i) + ": payload given but no payload key";
     }
   }
+  const detail::PvsLists lists(bake);
+  std::vector<std::uint32_t> buffer;
   for (std::size_t i = 0; problem.empty() && i < bake.cells.size(); ++i) {
-    problem = validate_cell(bake.cells[i], i, bake.cells.size(), bake.objects.size());
+    if (bake.pvs_source && !bake.cells[i].pvs.empty())
+      return "cell " + std::to_string(i) + ": pvs given although the bake has a pvs_source";
+    problem = validate_cell(bake.cells[i], lists.get(static_cast<std::uint32_t>(i), buffer), i,
+                            bake.cells.size(), bake.objects.size());
   }
   return problem;
 }
@@ -157,7 +162,8 @@ std::vector<std::byte> encode(const PvsBake& bake, const EncodeOptions& options)
   const bool coded = options.format_major >= 2 && options.pvs_coding == PvsCoding::kExpGolomb;
   sections.emplace_back(
       static_cast<std::uint32_t>(SectionId::kPvs),
-      detail::write_pvs(bake.cells, reader_neighbours(bake, sections, coded), options, coded));
+      detail::write_pvs(detail::PvsLists(bake), reader_neighbours(bake, sections, coded), options,
+                        coded));
   if (payloads) {
     sections.emplace_back(static_cast<std::uint32_t>(SectionId::kPayloads),
                           detail::write_payloads(bake.payload_key, bake.objects));

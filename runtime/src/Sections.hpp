@@ -117,10 +117,26 @@ struct PvsView {
 };
 /// A cell's neighbours, as the cells section gives them.
 using Neighbours = std::array<std::uint32_t, 3>;
+/// The bake's PVS lists, held as vectors in its cells or given by its pvs_source.
+class PvsLists {
+ public:
+  explicit PvsLists(const PvsBake& bake) : bake_(bake) {}
+  std::size_t size() const noexcept { return bake_.cells.size(); }
+  /// Cell `cell`'s list: the cell's own vector, or `buffer` filled by the source.
+  const std::vector<std::uint32_t>& get(std::uint32_t cell,
+                                        std::vector<std::uint32_t>& buffer) const {
+    if (!bake_.pvs_source) return bake_.cells[cell].pvs;
+    bake_.pvs_source(cell, buffer);
+    return buffer;
+  }
+
+ private:
+  const PvsBake& bake_;
+};
 /// `coded`: the 2.2 layout (exp-Golomb gaps, block index, neighbour-slot references), else the
 /// 2.0 one. `neighbours` (one per cell) are the ones a reader will see: the candidates of diff
 /// references, and in the coded layout the targets of their slots.
-std::vector<unsigned char> write_pvs(const std::vector<CellRecord>& cells,
+std::vector<unsigned char> write_pvs(const PvsLists& lists,
                                      const std::vector<Neighbours>& neighbours,
                                      const EncodeOptions& options, bool coded);
 /// Every cell's PVS decoded into one array (LoadOptions::expand_pvs), a record per cell, each

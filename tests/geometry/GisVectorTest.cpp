@@ -69,8 +69,9 @@ void translate(const fs::path& src, const fs::path& dst, std::vector<std::string
   GDALClose(in);
 }
 
-// A district near Manhattan in lon/lat: a 20 x 30 m block of 15 m, a courtyard block of 24 m
-// with a 10 x 10 m yard, and a footprint whose height is only in the dataset's own field.
+// A district near Manhattan in lon/lat: a 20 x 30 m block of 15 m (16 m by the dataset's own
+// field), a courtyard block of 24 m with a 10 x 10 m yard, and a footprint whose height is only
+// in the dataset's own field.
 std::string district_geojson() {
   const double lon0 = -73.99, lat0 = 40.75;
   const double mx = 1 / (111320.0 * std::cos(lat0 * M_PI / 180)), my = 1 / 110574.0;
@@ -91,7 +92,7 @@ std::string district_geojson() {
     return std::string(b);
   };
   return R"({"type":"FeatureCollection","features":[
-{"type":"Feature","properties":{"id":"a","height":15.0},"geometry":{"type":"Polygon","coordinates":[)" +
+{"type":"Feature","properties":{"id":"a","height":15.0,"HOEHE":16.0},"geometry":{"type":"Polygon","coordinates":[)" +
          ring(0, 0, 20, 30) + R"(]}},
 {"type":"Feature","properties":{"id":"b","height":24.0},"geometry":{"type":"Polygon","coordinates":[)" +
          ring(40, 0, 30, 30) + "," + hole(50, 10, 10, 10) + R"(]}},
@@ -168,7 +169,9 @@ TEST(GisVector, ProjectedMetresKeepTheirSystemAndFeetAreTransformed) {
   for (const Case& c :
        {Case{"utm.gpkg", "EPSG:32618", LocalFrame::Kind::Projected, "EPSG:32618"},
         Case{"feet.shp", "EPSG:2263", LocalFrame::Kind::Geographic, "OGC:CRS84"},
-        Case{"feet.shp.zip", "EPSG:2263", LocalFrame::Kind::Geographic, "OGC:CRS84"}}) {
+        Case{"feet.shp.zip", "EPSG:2263", LocalFrame::Kind::Geographic, "OGC:CRS84"},
+        // Web Mercator's metres are 1.32 true metres here: transformed too.
+        Case{"web.fgb", "EPSG:3857", LocalFrame::Kind::Geographic, "OGC:CRS84"}}) {
     SCOPED_TRACE(c.file);
     const fs::path out = scratch(c.file);
     fs::remove(out);
@@ -204,9 +207,18 @@ TEST(GisVector, HeightFieldComesFirstAndIsNamedWhenMissing) {
   write(src, district_geojson());
   const City without = read_city({src.string()});
   EXPECT_FALSE(by_id(without).at("c")->occludes) << "no height known";
+  EXPECT_DOUBLE_EQ(by_id(without).at("a")->bbox.zmax, 15);
   ReadOptions options;
   options.height_field = "HOEHE";
-  EXPECT_TRUE(by_id(read_city({src.string()}, options)).at("c")->occludes);
+  const City with = read_city({src.string()}, options);
+  EXPECT_TRUE(by_id(with).at("c")->occludes);
+  EXPECT_DOUBLE_EQ(by_id(with).at("a")->bbox.zmax, 16) << "the named field before height";
+  options.height_field = "HOHE";
+  bool warned = false;
+  for (const std::string& w : read_city({src.string()}, options).report.warnings)
+    warned |=
+        w == src.string() + ": --height-field HOHE: no feature has this property, field or tag";
+  EXPECT_TRUE(warned) << "a misspelt field name";
   options.height_field = "h_max";
   options.strict = true;
   const auto [problem, what] = error_of(src, options);
@@ -215,6 +227,49 @@ TEST(GisVector, HeightFieldComesFirstAndIsNamedWhenMissing) {
                       ": c: missing height: no h_max, height, building:height, measuredHeight or "
                       "building:levels "
                       "(give a default height; --strict refuses objects of unknown height)");
+}
+
+// Ids: a feature's own "id" (or "@id") field, matched exactly, else its FID: ArcGIS's "ID"
+// field of zeros is none. Walls standing on edge (3D surfaces) are left out, the footprint beside
+// them kept.
+TEST(GisVector, IdsAreFidsUnlessTheFeatureNamesItselfAndWallsAreLeftOut) {
+  const fs::path src = scratch("ids.geojson");
+  write(src, R"({"type":"FeatureCollection","features":[
+{"type":"Feature","properties":{"ID":0,"height":10},"geometry":{"type":"MultiPolygon","coordinates":[
+ [[[24.9500,60.1700,0],[24.9502,60.1700,0],[24.9502,60.1701,0],[24.9500,60.1701,0],[24.9500,60.1700,0]]],
+ [[[24.9500,60.1700,0],[24.9502,60.1700,0],[24.9502,60.1700,10],[24.9500,60.1700,10],[24.9500,60.1700,0]]]]}},
+{"type":"Feature","properties":{"ID":0,"@id":"own","height":10},"geometry":{"type":"Polygon","coordinates":[
+ [[24.9505,60.1700,0],[24.9507,60.1700,0],[24.9507,60.1701,0],[24.9505,60.1701,0],[24.9505,60.1700,0]]]}}]})");
+  const fs::path out = scratch("ids.gpkg");
+  fs::remove(out);
+  translate(src, out, {});
+  const City city = read_city({out.string()});
+  const auto ids = by_id(city);
+  ASSERT_EQ(ids.size(), 2u);
+  EXPECT_TRUE(ids.count("1")) << "the first feature's FID";
+  EXPECT_TRUE(ids.count("own"));
+  EXPECT_NEAR(footprint_area(*ids.at("1")), footprint_area(*ids.at("own")), 1e-6);
+  bool warned = false;
+  for (const std::string& w : city.report.warnings)
+    warned |= w.find("1 vertical polygon(s)") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+// A damaged file ends in an error, not in a smaller city.
+TEST(GisVector, ATruncatedShapefileIsAnError) {
+  const fs::path dir = scratch("truncated");
+  fs::create_directories(dir);
+  for (const char* ext : {".shp", ".shx", ".dbf", ".prj"})
+    fs::copy_file(fs::path(URBANPVS_TEST_DATA) / "gis" / (std::string("district") + ext),
+                  dir / (std::string("district") + ext), fs::copy_options::overwrite_existing);
+  fs::resize_file(dir / "district.shp", 600);
+  const auto [problem, what] = error_of(dir / "district.shp");
+  EXPECT_EQ(problem, InputProblem::Unreadable);
+  EXPECT_EQ(what.rfind((dir / "district.shp").string() +
+                           ": district: unreadable file: reading stopped after",
+                       0),
+            0u)
+      << what;
 }
 
 TEST(GisVector, SeveralLayersOfPolygonsNeedALayerName) {

@@ -165,6 +165,14 @@ TEST(BakeJournal, FileAppendReopenAndRemove) {
   std::vector<bool> seen(40);
   for (std::size_t i = 0; i < 40; ++i) seen[after.records[i].cell] = true;
   EXPECT_EQ(std::count(seen.begin(), seen.end(), true), 40);
+  // A sink takes the same records in the same order, and none is kept.
+  std::vector<JournalRecord> sunk;
+  const JournalContents through_sink = decode_journal(read_file(path), kIdentity, path,
+                                                      [&](JournalRecord& r) { sunk.push_back(r); });
+  EXPECT_TRUE(through_sink.records.empty());
+  EXPECT_EQ(through_sink.valid_bytes, after.valid_bytes);
+  ASSERT_EQ(sunk.size(), after.records.size());
+  for (std::size_t i = 0; i < sunk.size(); ++i) expect_same(sunk[i], after.records[i]);
 
   auto journal = BakeJournal::reopen(path, kIdentity, contents);
   EXPECT_TRUE(journal->remove());

@@ -10,9 +10,12 @@
 #include <filesystem>
 
 #include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/preprocess/bake/BakeScene.hpp"
 #include "urbanpvs/preprocess/bake/CityBake.hpp"
+#include "urbanpvs/preprocess/bake/CompactPvsStore.hpp"
 #include "urbanpvs/preprocess/bake/PreprocessCommand.hpp"
 #include "urbanpvs/runtime/PvsFile.hpp"
+#include "urbanpvs/runtime/PvsWriter.hpp"
 
 namespace fs = std::filesystem;
 using namespace urbanpvs;
@@ -84,4 +87,32 @@ TEST(PvsFileAssembly, BakeCityAndThePreprocessCommandStoreTheSameFile) {
     EXPECT_EQ(stored[i + 1], direct.meta.properties[i]) << "property " << i;
   EXPECT_EQ(file.settings().epsilon_m, direct.meta.settings.epsilon_m);
   EXPECT_EQ(file.settings().max_cell_edge_m, 30.0);
+}
+
+// urbanpvs-preprocess hands its lists to the writer from the compact store: the file's bytes are
+// those of the same lists as vectors, in both codings.
+TEST(PvsFileAssembly, TheCompactStoreGivesTheBytesOfTheLists) {
+  const geometry::City city = geometry::read_city({kCity});
+  const preprocess::BakeOptions options = small_bake(city);
+  const runtime::PvsBake direct = preprocess::bake_city(city, options);
+  const preprocess::BakeScene scene(city, options);
+  ASSERT_EQ(scene.cell_count(), direct.cells.size());
+  preprocess::CompactPvsStore store(scene.cell_count(),
+                                    static_cast<std::uint32_t>(city.objects.size()));
+  std::vector<std::vector<std::uint32_t>> lists;
+  for (std::uint32_t c = 0; c < scene.cell_count(); ++c) {
+    std::vector<std::uint32_t> pvs = direct.cells[c].pvs;
+    std::sort(pvs.begin(), pvs.end());
+    store.store(c, pvs);
+    lists.push_back(std::move(pvs));
+  }
+  const runtime::PvsBake from_store = scene.pvs_file(store, {{"k", "v"}}, 7);
+  const runtime::PvsBake from_lists = scene.pvs_file(std::move(lists), {{"k", "v"}}, 7);
+  for (runtime::PvsCoding coding : {runtime::PvsCoding::kExpGolomb, runtime::PvsCoding::kVarint}) {
+    runtime::EncodeOptions o;
+    o.pvs_coding = coding;
+    const std::vector<std::byte> bytes = runtime::encode(from_store, o);
+    EXPECT_EQ(bytes, runtime::encode(from_lists, o));
+    EXPECT_GT(bytes.size(), 100u);
+  }
 }

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "GoldenBake.hpp"
+#include "RandomBake.hpp"
 #include "urbanpvs/runtime/FileIo.hpp"
 #include "urbanpvs/runtime/PvsFile.hpp"
 #include "urbanpvs/runtime/PvsWriter.hpp"
@@ -73,6 +74,45 @@ TEST(Writer, ValidatesTheBake) {
   b = urbanpvs::test::golden_bake_with_payloads();
   b.payload_key = "\xFF";
   expect_invalid(b, "payload key is not valid UTF-8");
+}
+
+// A bake whose lists come from pvs_source (the preprocessor's compact store) encodes to the bytes
+// of the same lists given as vectors, in every format and coding, and is validated alike.
+TEST(Writer, ListsFromASourceGiveTheBytesOfTheVectors) {
+  for (double density : {0.02, 0.3, 0.9}) {
+    urbanpvs::test::RandomBakeOptions o;
+    o.nx = o.ny = 9;
+    o.objects = 300;
+    o.density = density;
+    const rt::PvsBake vectors = urbanpvs::test::random_mesh_bake(11, o);
+    rt::PvsBake sourced = vectors;
+    for (rt::CellRecord& c : sourced.cells) c.pvs.clear();
+    std::size_t asked = 0;
+    sourced.pvs_source = [&](std::uint32_t cell, std::vector<std::uint32_t>& out) {
+      ++asked;
+      out = vectors.cells[cell].pvs;
+    };
+    for (const auto& [major, coding] :
+         {std::pair{2, rt::PvsCoding::kExpGolomb}, std::pair{2, rt::PvsCoding::kVarint},
+          std::pair{1, rt::PvsCoding::kVarint}}) {
+      rt::EncodeOptions options;
+      options.format_major = static_cast<std::uint16_t>(major);
+      options.pvs_coding = coding;
+      EXPECT_EQ(rt::encode(sourced, options), rt::encode(vectors, options))
+          << "density " << density << ", format " << major;
+    }
+    EXPECT_GT(asked, 3 * vectors.cells.size()) << "validation, full lists and diff candidates";
+  }
+  rt::PvsBake b = urbanpvs::test::golden_bake();
+  const rt::PvsBake lists = b;
+  for (rt::CellRecord& c : b.cells) c.pvs.clear();
+  b.pvs_source = [&](std::uint32_t cell, std::vector<std::uint32_t>& out) {
+    out = lists.cells[cell].pvs;
+    if (cell == 3 && out.size() >= 2) std::swap(out[0], out[1]);
+  };
+  expect_invalid(b, "cell 3: pvs not strictly increasing at position 1");
+  b.cells[2].pvs = {1};
+  expect_invalid(b, "cell 2: pvs given although the bake has a pvs_source");
 }
 
 TEST(Writer, PayloadsNeedVersion2) {

@@ -2,7 +2,7 @@
 <!-- CityGML 2.0 for tests/geometry/CityGmlTest.cpp: a LoD1 building on a TIN relief of two
      triangles (sloping from 10 m at x = 0 to 20 m at x = 100), and a tree (an ignored type). -->
 <CityModel xmlns="http://www.opengis.net/citygml/2.0" xmlns:bldg="http://www.opengis.net/citygml/building/2.0" xmlns:dem="http://www.opengis.net/citygml/relief/2.0" xmlns:veg="http://www.opengis.net/citygml/vegetation/2.0" xmlns:gml="http://www.opengis.net/gml">
-  <gml:boundedBy><gml:Envelope srsName="EPSG:3857" srsDimension="3"/></gml:boundedBy>
+  <gml:boundedBy><gml:Envelope srsName="EPSG:28992" srsDimension="3"/></gml:boundedBy>
   <cityObjectMember>
     <dem:ReliefFeature gml:id="relief">
       <dem:lod>1</dem:lod>

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -62,6 +63,14 @@ struct PvsBake {
   /// The attribute or tag the objects' payloads came from (UTF-8). Non-empty: the file gets a
   /// payloads section and is version 2.1 (format_major 2 only); empty: every payload must be.
   std::string payload_key;
+  /// For bakes whose lists are too many to hold as vectors (a city whose buildings mostly have
+  /// no height: every cell sees them all). When set, every cell's `pvs` must be empty, and the
+  /// writer asks this for cell i's list instead (the same strictly increasing indices), in no
+  /// fixed order: to validate it, to encode it, and as a diff candidate of its neighbours (about
+  /// 5 times per cell at the default diff chain, up to about 20 at the longest), so it should
+  /// decode from compact storage quickly.
+  /// The bytes written are those of the same lists given as vectors.
+  std::function<void(std::uint32_t cell, std::vector<std::uint32_t>& pvs)> pvs_source;
 };
 
 /// How the gaps of the PVS lists are coded.

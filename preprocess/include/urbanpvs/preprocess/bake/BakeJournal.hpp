@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -56,9 +57,11 @@ class JournalMismatch : public std::runtime_error {
 
 /// The valid prefix of a journal's bytes.
 struct JournalContents {
-  std::vector<JournalRecord> records;  ///< in file order; a cell may repeat (identical records)
-  std::uint64_t valid_bytes = 0;       ///< header plus the whole records with good checksums
-  std::uint64_t dropped_bytes = 0;     ///< a torn or damaged tail after them
+  /// In file order; a cell may repeat (identical records). Empty where a JournalRecordSink took
+  /// them.
+  std::vector<JournalRecord> records;
+  std::uint64_t valid_bytes = 0;    ///< header plus the whole records with good checksums
+  std::uint64_t dropped_bytes = 0;  ///< a torn or damaged tail after them
 };
 
 inline constexpr std::uint32_t kJournalVersion = 3;  // 3: the far field's sweep counters
@@ -68,11 +71,18 @@ std::vector<unsigned char> encode_journal_header(const JournalIdentity& identity
 /// Appends the record's bytes to `out`. The PVS must be strictly increasing.
 void encode_journal_record(const JournalRecord& record, std::vector<unsigned char>& out);
 
+/// Takes each valid record as it is read, in file order, instead of JournalContents::records:
+/// a journal of a city whose cells see every building would not fit in memory as records
+/// (CompactPvsStore.hpp).
+using JournalRecordSink = std::function<void(JournalRecord& record)>;
+
 /// Reads the header and the valid records of a journal held in memory. Safe on any bytes: a
 /// record whose checksum, size, cell or object indices are off ends the valid prefix. Throws
-/// JournalMismatch (naming `name`) when the header is not that of `expected`.
+/// JournalMismatch (naming `name`) when the header is not that of `expected`. With a `sink`,
+/// the records go to it and `records` stays empty.
 JournalContents decode_journal(std::span<const unsigned char> bytes,
-                               const JournalIdentity& expected, const std::string& name);
+                               const JournalIdentity& expected, const std::string& name,
+                               const JournalRecordSink& sink = {});
 
 /// An open journal file. append() may be called from several threads.
 class BakeJournal {
@@ -85,7 +95,8 @@ class BakeJournal {
   /// JournalWriteError; a missing file is a JournalWriteError too (check first).
   static std::unique_ptr<BakeJournal> reopen(const std::string& path,
                                              const JournalIdentity& identity,
-                                             JournalContents& contents);
+                                             JournalContents& contents,
+                                             const JournalRecordSink& sink = {});
 
   ~BakeJournal();
   BakeJournal(const BakeJournal&) = delete;

@@ -14,6 +14,7 @@
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/geometry/occluders/Blocks.hpp"
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
+#include "urbanpvs/preprocess/bake/CompactPvsStore.hpp"
 #include "urbanpvs/preprocess/visibility/CellMapRenderer.hpp"
 #include "urbanpvs/preprocess/visibility/CullMap.hpp"
 #include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
@@ -94,8 +95,21 @@ class BakeScene {
   runtime::PvsBake pvs_file(std::vector<std::vector<std::uint32_t>> pvs,
                             std::vector<std::pair<std::string, std::string>> properties,
                             std::uint64_t input_hash = 0) const;
+  /// The same file with the lists held compactly (a large bake's): the bake reads them from
+  /// `pvs` as it is encoded (runtime::PvsBake::pvs_source), so `pvs` must outlive it. The bytes
+  /// encoded are those of the lists given as vectors.
+  runtime::PvsBake pvs_file(const CompactPvsStore& pvs,
+                            std::vector<std::pair<std::string, std::string>> properties,
+                            std::uint64_t input_hash = 0) const;
+  runtime::PvsBake pvs_file(CompactPvsStore&& pvs,
+                            std::vector<std::pair<std::string, std::string>> properties,
+                            std::uint64_t input_hash = 0) const = delete;  // it would dangle
 
  private:
+  /// The file less its lists, for `lists` of them (std::invalid_argument unless one per cell).
+  runtime::PvsBake pvs_file_without_lists(
+      std::size_t lists, std::vector<std::pair<std::string, std::string>> properties,
+      std::uint64_t input_hash) const;
   runtime::CellRecord cell_record(std::uint32_t cell, std::vector<std::uint32_t> pvs) const;
 
   const geometry::City* city_;
