@@ -2,6 +2,7 @@
 #include "urbanpvs/preprocess/bake/BakeJournal.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -207,17 +208,25 @@ std::unique_ptr<BakeJournal> BakeJournal::reopen(const std::string& path,
   const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
   if (fd < 0) throw JournalWriteError(path + ": cannot open the journal: " + errno_text());
   std::unique_ptr<BakeJournal> journal(new BakeJournal(path, fd));
-  std::vector<unsigned char> bytes;
-  unsigned char chunk[1 << 16];
-  for (off_t offset = 0;;) {
-    const ssize_t n = ::pread(fd, chunk, sizeof chunk, offset);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw JournalWriteError(path + ": cannot read the journal: " + errno_text());
-    if (n == 0) break;
-    bytes.insert(bytes.end(), chunk, chunk + n);
-    offset += n;
-  }
-  contents = decode_journal(bytes, identity, path, sink);
+  // Mapped, not read into memory: the journal of a city whose cells see thousands of objects
+  // each takes gigabytes, and its records go on into the compact store one by one.
+  struct stat st {};
+  if (::fstat(fd, &st) != 0)
+    throw JournalWriteError(path + ": cannot read the journal: " + errno_text());
+  const auto size = static_cast<std::size_t>(st.st_size);
+  void* mapped = size > 0 ? ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0) : nullptr;
+  if (mapped == MAP_FAILED)
+    throw JournalWriteError(path + ": cannot read the journal: " + errno_text());
+  struct Unmap {
+    void* at;
+    std::size_t size;
+    ~Unmap() {
+      if (at != nullptr) ::munmap(at, size);
+    }
+  } unmap{mapped, size};
+  if (mapped != nullptr) ::madvise(mapped, size, MADV_SEQUENTIAL);
+  contents =
+      decode_journal({static_cast<const unsigned char*>(mapped), size}, identity, path, sink);
   // New records must follow the valid prefix directly, not a torn record.
   if (contents.dropped_bytes > 0 && ::ftruncate(fd, static_cast<off_t>(contents.valid_bytes)) != 0)
     throw JournalWriteError(path + ": cannot cut off the journal's torn end: " + errno_text());
