@@ -229,6 +229,7 @@ Json read_gis_vector(const std::string& path, const ReadOptions& options, ReadRe
       geometry.reset(geometry->getLinearGeometry());  // arcs as segments
     if (geometry && system.to_wgs84 && geometry->transform(system.to_wgs84.get()) != OGRERR_NONE) {
       if (untransformed++ == 0) first_untransformed = fid;
+      CPLErrorReset();  // PROJ's error for this feature is no read error of the layer
       continue;
     }
     Json polygons = Json::array();
