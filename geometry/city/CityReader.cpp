@@ -5,8 +5,10 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -108,6 +110,14 @@ std::ifstream open_input_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputProblem::Unreadable, path, "", "cannot open file");
   return in;
+}
+
+bool has_extension(const std::string& path, const char* ext) {
+  const std::size_t n = std::strlen(ext);
+  if (path.size() < n) return false;
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != ext[i]) return false;
+  return true;
 }
 
 std::string json_error_text(const nlohmann::json::exception& e) {

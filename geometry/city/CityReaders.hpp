@@ -74,6 +74,9 @@ inline constexpr const char* kStreetsMember = "urbanpvs:streets";
 StreetNetwork osm_streets(const Json& streets, const std::string& file,
                           const LocalFrameMapping& mapping, ReadReport& report);
 
+/// True when `path` ends in `ext` (lower case), whatever the case of the path's letters.
+bool has_extension(const std::string& path, const char* ext);
+
 /// True for the names of OpenStreetMap files (.osm.pbf, .pbf, .osm, .osm.gz, .osm.bz2).
 bool is_osm_file(const std::string& path);
 /// An OpenStreetMap file's buildings and building parts as a GeoJSON FeatureCollection in

@@ -29,14 +29,6 @@
 namespace urbanpvs::geometry::detail {
 namespace {
 
-bool ends_with(const std::string& s, const char* ext) {
-  const std::size_t n = std::strlen(ext);
-  if (s.size() < n) return false;
-  for (std::size_t i = 0; i < n; ++i)
-    if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != ext[i]) return false;
-  return true;
-}
-
 bool is_polygonal(OGRwkbGeometryType t) {
   switch (wkbFlatten(t)) {
     case wkbPolygon:
@@ -194,7 +186,7 @@ LayerSystem layer_system(OGRLayer& layer, const std::string& path) {
 
 bool is_gis_vector_file(const std::string& path) {
   for (const char* ext : {".shp", ".shz", ".shp.zip", ".gpkg", ".fgb", ".tab", ".sqlite"})
-    if (ends_with(path, ext)) return true;
+    if (has_extension(path, ext)) return true;
   return false;
 }
 
@@ -202,7 +194,7 @@ Json read_gis_vector(const std::string& path, const ReadOptions& options, ReadRe
   open_input_file(path);  // the project's own messages for a missing or unreadable file
   const QuietGdal quiet;
   // A zipped shapefile is read where it lies, without unpacking it.
-  const std::string where = ends_with(path, ".shp.zip") ? "/vsizip/" + path : path;
+  const std::string where = has_extension(path, ".shp.zip") ? "/vsizip/" + path : path;
   std::unique_ptr<GDALDataset, DatasetCloser> ds(GDALDataset::FromHandle(
       GDALOpenEx(where.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds)

@@ -173,9 +173,7 @@ void report_lines(const std::string& text, const std::string& file, ReadReport& 
 
 bool is_osm_file(const std::string& path) {
   for (const char* ext : {".osm.pbf", ".pbf", ".osm", ".osm.gz", ".osm.bz2"})
-    if (path.size() >= std::strlen(ext) &&
-        path.compare(path.size() - std::strlen(ext), std::string::npos, ext) == 0)
-      return true;
+    if (has_extension(path, ext)) return true;
   return false;
 }
 

@@ -120,8 +120,7 @@ std::vector<Vec3> BakeScene::samples(std::uint32_t cell) const {
   return out;
 }
 
-runtime::CellRecord BakeScene::cell_record(std::uint32_t cell,
-                                           std::vector<std::uint32_t> pvs) const {
+runtime::CellRecord BakeScene::cell_record(std::uint32_t cell) const {
   const geometry::ViewCell& c = mesh_.cells[cell];
   runtime::CellRecord rec;
   // The runtime numbers neighbours by edge k = corner k -> k+1, the mesh by opposite corner.
@@ -134,7 +133,6 @@ runtime::CellRecord BakeScene::cell_record(std::uint32_t cell,
   }
   rec.z_min = c.zmin;
   rec.z_max = c.zmax;
-  rec.pvs = std::move(pvs);
   return rec;
 }
 
@@ -174,7 +172,7 @@ runtime::PvsBake BakeScene::pvs_file_without_lists(
                             o.payload});
   bake.payload_key = city_->payload_key;
   bake.cells.reserve(cell_count());
-  for (std::uint32_t c = 0; c < cell_count(); ++c) bake.cells.push_back(cell_record(c, {}));
+  for (std::uint32_t c = 0; c < cell_count(); ++c) bake.cells.push_back(cell_record(c));
   return bake;
 }
 

@@ -34,7 +34,6 @@ class VarintReader {
     return false;
   }
   bool at_end() const { return p_ == end_; }
-  const unsigned char* position() const { return p_; }
 
  private:
   const unsigned char* p_;

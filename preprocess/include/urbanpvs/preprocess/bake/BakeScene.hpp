@@ -110,7 +110,7 @@ class BakeScene {
   runtime::PvsBake pvs_file_without_lists(
       std::size_t lists, std::vector<std::pair<std::string, std::string>> properties,
       std::uint64_t input_hash) const;
-  runtime::CellRecord cell_record(std::uint32_t cell, std::vector<std::uint32_t> pvs) const;
+  runtime::CellRecord cell_record(std::uint32_t cell) const;  ///< its list left empty
 
   const geometry::City* city_;
   BakeOptions options_;
