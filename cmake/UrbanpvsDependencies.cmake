@@ -18,3 +18,12 @@ find_package(Threads REQUIRED)
 add_library(Osmium::Osmium INTERFACE IMPORTED)
 target_include_directories(Osmium::Osmium SYSTEM INTERFACE ${OSMIUM_INCLUDE_DIR})
 target_link_libraries(Osmium::Osmium INTERFACE ZLIB::ZLIB EXPAT::EXPAT BZip2::BZip2 Threads::Threads)
+
+# TetGen (libtet1.5-dev) has neither a CMake config nor pkg-config: its header and library.
+if(URBANPVS_TETGEN)
+  find_path(TETGEN_INCLUDE_DIR tetgen.h REQUIRED)
+  find_library(TETGEN_LIBRARY tet REQUIRED)
+  add_library(TetGen::TetGen UNKNOWN IMPORTED)
+  set_target_properties(TetGen::TetGen PROPERTIES IMPORTED_LOCATION ${TETGEN_LIBRARY}
+                        INTERFACE_INCLUDE_DIRECTORIES ${TETGEN_INCLUDE_DIR})
+endif()

@@ -10,6 +10,8 @@ packages=(
   libclang-rt-14-dev
   # geometry: triangulation, straight skeleton, Boolean operations (GPL parts of CGAL)
   libcgal-dev libgmp-dev libmpfr-dev
+  # the 3D shrinking route (thesis 7.3.1): TetGen, AGPL, linked only with URBANPVS_TETGEN=ON
+  libtet1.5-dev
   # OpenStreetMap input (PBF and XML)
   libosmium2-dev
   # CityGML input (streaming XML parser; libosmium's XML reader uses it too)

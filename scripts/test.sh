@@ -11,7 +11,9 @@ echo "== Formatting (clang-format --dry-run --Werror, the checked-in .clang-form
 git ls-files '*.cpp' '*.hpp' '*.h' '*.c' | xargs clang-format --dry-run --Werror
 
 echo "== Release build (warnings are errors)"
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DURBANPVS_WERROR=ON
+# With TetGen (AGPL), so that the 3D shrinking route is built and tested too.
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DURBANPVS_WERROR=ON \
+  -DURBANPVS_TETGEN=ON
 cmake --build build/release -j"$jobs"
 # Tests labelled "heavy" (default bakes of the two largest real cities, 4-7 min each) only on
 # request: CI's budget is 30 minutes on 2 cores.
@@ -35,7 +37,7 @@ if [ "${URBANPVS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # (variable tracking) and the tests gain nothing from it.
   cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DURBANPVS_WERROR=ON \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-    -DURBANPVS_SANITIZE=ON \
+    -DURBANPVS_SANITIZE=ON -DURBANPVS_TETGEN=ON \
     -DURBANPVS_BUILD_BENCHMARKS=OFF
   cmake --build build/asan -j"$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

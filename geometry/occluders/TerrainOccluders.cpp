@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "LatticeMask.hpp"
 #include "urbanpvs/geometry/city/ConvexClip.hpp"
 
 namespace urbanpvs::geometry {
@@ -71,115 +72,31 @@ double area_of(const ClipPolygon& p) {
 class TileMask {
  public:
   TileMask(const TerrainRaster& r, int i0, int i1, int j0, int j1, double epsilon)
-      : raster_(r), i0_(i0), j0_(j0), nu_(3 * (i1 - i0)), nv_(3 * (j1 - j0)) {
-    xs_ = lines(r.area.min.x, i0, i1, r.square, epsilon);
-    ys_ = lines(r.area.min.y, j0, j1, r.square, epsilon);
-    in_.assign(static_cast<std::size_t>(nu_) * static_cast<std::size_t>(nv_), 0);
-  }
+      : raster_(r),
+        i0_(i0),
+        j0_(j0),
+        mask_(lines(r.area.min.x, i0, i1, r.square, epsilon),
+              lines(r.area.min.y, j0, j1, r.square, epsilon)) {}
 
   /// The sub-cells of the squares at least h, eroded; true when any is set.
   bool erode(double h) {
     auto square = [&](int i, int j) { return raster_.lowest_at(i, j) >= h; };
     bool any = false;
-    for (int v = 0; v < nv_; ++v)
-      for (int u = 0; u < nu_; ++u) {
+    for (int v = 0; v < mask_.rows(); ++v)
+      for (int u = 0; u < mask_.columns(); ++u) {
         const int i = i0_ + u / 3, j = j0_ + v / 3;
         const int dx = u % 3 == 0 ? -1 : (u % 3 == 2 ? 1 : 0);
         const int dy = v % 3 == 0 ? -1 : (v % 3 == 2 ? 1 : 0);
         const bool set = square(i, j) && (dx == 0 || square(i + dx, j)) &&
                          (dy == 0 || square(i, j + dy)) &&
                          (dx == 0 || dy == 0 || square(i + dx, j + dy));
-        at(u, v) = set ? 1 : 0;
+        mask_.set(u, v, set);
         any = any || set;
       }
     return any;
   }
 
-  bool full() const {
-    return std::all_of(in_.begin(), in_.end(), [](unsigned char c) { return c != 0; });
-  }
-  const std::vector<unsigned char>& cells() const { return in_; }
-
-  /// Where two sub-cells meet only at a corner, one is cleared: the rings traced below then
-  /// never touch themselves or each other (an occluder may always be smaller).
-  void separate_diagonals() {
-    for (bool changed = true; changed;) {
-      changed = false;
-      for (int v = 0; v + 1 < nv_; ++v)
-        for (int u = 0; u + 1 < nu_; ++u) {
-          const bool a = get(u, v), b = get(u + 1, v), c = get(u, v + 1), d = get(u + 1, v + 1);
-          if (a && d && !b && !c) {
-            at(u, v) = 0;
-            changed = true;
-          } else if (b && c && !a && !d) {
-            at(u + 1, v) = 0;
-            changed = true;
-          }
-        }
-    }
-  }
-
-  /// The set sub-cells as polygons (outer rings counter-clockwise, holes clockwise), the
-  /// tile's border taken as their outside; false if the rings could not be assembled.
-  bool polygons(std::vector<Polygon>& out) const {
-    // The boundary edge leaving each lattice vertex, with the set cells on its left: after
-    // separate_diagonals, at most one. 0: +x, 1: +y, 2: -x, 3: -y; 4: none.
-    const auto w = static_cast<std::size_t>(nu_ + 1);
-    std::vector<unsigned char> leaving(w * static_cast<std::size_t>(nv_ + 1), 4);
-    auto vertex = [&](int u, int v) -> unsigned char& {
-      return leaving[static_cast<std::size_t>(v) * w + static_cast<std::size_t>(u)];
-    };
-    bool ok = true;
-    auto put = [&](int u, int v, unsigned char dir) {
-      ok = ok && vertex(u, v) == 4;
-      vertex(u, v) = dir;
-    };
-    for (int v = 0; v < nv_; ++v)
-      for (int u = 0; u < nu_; ++u) {
-        if (!get(u, v)) continue;
-        if (v == 0 || !get(u, v - 1)) put(u, v, 0);
-        if (u + 1 == nu_ || !get(u + 1, v)) put(u + 1, v, 1);
-        if (v + 1 == nv_ || !get(u, v + 1)) put(u + 1, v + 1, 2);
-        if (u == 0 || !get(u - 1, v)) put(u, v + 1, 3);
-      }
-    if (!ok) return false;
-    static constexpr int kStep[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-    std::vector<Ring> outers, holes;
-    for (int v0 = 0; v0 <= nv_; ++v0)
-      for (int u0 = 0; u0 <= nu_; ++u0) {
-        if (vertex(u0, v0) == 4) continue;
-        Ring ring;
-        int u = u0, v = v0, previous = -1;
-        for (;;) {
-          unsigned char& slot = vertex(u, v);
-          if (slot == 4) break;  // back at the start
-          const int dir = slot;
-          slot = 4;
-          if (dir != previous) ring.push_back(point(u, v));  // a corner
-          previous = dir;
-          u += kStep[dir][0];
-          v += kStep[dir][1];
-        }
-        if (u != u0 || v != v0 || ring.size() < 4) return false;
-        // The start may sit mid-edge when the walk began on a straight run: drop it.
-        if (leaving_direction_matches(ring)) ring.erase(ring.begin());
-        (signed_area2(ring) > 0 ? outers : holes).push_back(std::move(ring));
-      }
-    const std::size_t first = out.size();
-    for (Ring& r : outers) out.push_back({std::move(r), {}});
-    for (Ring& h : holes) {
-      // Each hole in the smallest outer ring around it (islands nest in holes).
-      std::size_t best = out.size();
-      double best_area = std::numeric_limits<double>::infinity();
-      for (std::size_t k = first; k < out.size(); ++k) {
-        const double a = signed_area2(out[k].outer);
-        if (a < best_area && inside_ring(out[k].outer, h.front())) best = k, best_area = a;
-      }
-      if (best == out.size()) return false;
-      out[best].holes.push_back(std::move(h));
-    }
-    return true;
-  }
+  LatticeMask& mask() { return mask_; }
 
  private:
   static std::vector<double> lines(double origin, int k0, int k1, double side, double epsilon) {
@@ -191,25 +108,10 @@ class TileMask {
     out.push_back(origin + k1 * side);
     return out;
   }
-  Vec2 point(int u, int v) const {
-    return {xs_[static_cast<std::size_t>(u)], ys_[static_cast<std::size_t>(v)]};
-  }
-  // True when the ring's first point lies on the straight line from its last to its second.
-  static bool leaving_direction_matches(const Ring& r) {
-    const Vec2 a = r.back(), b = r.front(), c = r[1];
-    return (a.x == b.x && b.x == c.x) || (a.y == b.y && b.y == c.y);
-  }
-  std::size_t index(int u, int v) const {
-    return static_cast<std::size_t>(v) * static_cast<std::size_t>(nu_) +
-           static_cast<std::size_t>(u);
-  }
-  bool get(int u, int v) const { return in_[index(u, v)] != 0; }
-  unsigned char& at(int u, int v) { return in_[index(u, v)]; }
 
   const TerrainRaster& raster_;
-  int i0_, j0_, nu_, nv_;
-  std::vector<double> xs_, ys_;
-  std::vector<unsigned char> in_;
+  int i0_, j0_;
+  LatticeMask mask_;
 };
 
 }  // namespace
@@ -281,17 +183,17 @@ std::vector<Occluder> terrain_occluders(const Terrain& terrain, const Box2& area
       if (!(high > -std::numeric_limits<double>::infinity())) continue;
       const auto k_high = static_cast<long long>(std::floor(high / step));
       const auto k_low = static_cast<long long>(std::ceil(low / step));
-      TileMask mask(r, i0, i1, j0, j1, epsilon);
+      TileMask levels(r, i0, i1, j0, j1, epsilon);
       std::vector<unsigned char> above;  // the level above's cells: equal ones hide no more
       for (long long k = k_high; k >= k_low; --k) {
         const double h = static_cast<double>(k) * step;
-        if (!mask.erode(h) || mask.cells() == above) continue;
-        above = mask.cells();
-        const bool full = mask.full();
-        mask.separate_diagonals();
+        if (!levels.erode(h) || levels.mask().cells() == above) continue;
+        above = levels.mask().cells();
+        const bool full = levels.mask().full();
+        levels.mask().separate_diagonals();
         std::vector<Polygon> shapes;
         // Rings that do not assemble are left out: an occluder may always be smaller.
-        if (mask.polygons(shapes))
+        if (levels.mask().polygons(shapes))
           for (Polygon& p : shapes) {
             const Box2 box = bounds(p);
             out.push_back({kTerrainBlock, h, std::move(p), box});

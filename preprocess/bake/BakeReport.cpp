@@ -53,6 +53,9 @@ std::string report_json(const BakeReport& r) {
                  {"blocks", r.blocks},
                  {"occluders", r.occluders},
                  {"terrain_occluders", r.terrain_occluders},
+                 {"solid_occluders", r.solid_occluders},
+                 {"solids_shrunk", r.solids_shrunk},
+                 {"solids_declined", r.solids_declined},
                  {"cells", r.cells},
                  {"cell_area_m2", r.cell_area},
                  {"multipolygons", r.multipolygons},
@@ -109,6 +112,15 @@ std::string summary_text(const BakeReport& r) {
       r.terrain_occluders > 0 ? ", " + std::to_string(r.terrain_occluders) + " of the terrain" : "";
   add(std::snprintf(line, sizeof line, "objects:     %zu (%zu blocks, %zu occluders%s)\n",
                     r.objects, r.blocks, r.occluders, terrain.c_str()));
+  if (r.solid_occluders > 0 || !r.solids_declined.empty()) {
+    std::size_t declined = 0;
+    for (const auto& [why, count] : r.solids_declined) declined += count;
+    add(std::snprintf(line, sizeof line,
+                      "solids:      %zu buildings shrunk in 3D into %zu occluders, %zu gave none\n",
+                      r.solids_shrunk, r.solid_occluders, declined));
+    for (const auto& [why, count] : r.solids_declined)
+      out += "  no solid:    " + std::to_string(count) + " buildings: " + why + "\n";
+  }
   add(std::snprintf(line, sizeof line,
                     "input:       %zu geometric repairs, %zu objects that occlude nothing\n",
                     r.repairs.size(), r.non_occluding.size()));

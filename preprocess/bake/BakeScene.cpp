@@ -8,12 +8,17 @@
 
 #include "urbanpvs/geometry/city/ObjectOutline.hpp"
 #include "urbanpvs/geometry/occluders/InwardSimplification.hpp"
+#include "urbanpvs/geometry/occluders/SolidOccluders.hpp"
 #include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
+
+// A building's solid takes TetGen milliseconds; one that takes this long has sent it into one
+// of its endless loops (shrink_solids).
+constexpr double kSecondsPerSolid = 10;  // [Units: s]
 
 runtime::Metadata metadata_of(const geometry::City& city, const BakeOptions& o) {
   runtime::Metadata m;
@@ -63,6 +68,9 @@ void BakeOptions::validate() const {
                                 std::to_string(max_map) + "\"");
   CullMapSettings{cells.epsilon, pixel}.validate();  // the coupling of ε and the pixel (7.2)
   geometry::validate(cells);                         // the region
+  if (blocks.solid_step > 0 && !geometry::solid_shrinking_available())
+    throw std::invalid_argument(
+        "--solid-step needs TetGen: this build was configured with URBANPVS_TETGEN=OFF");
 }
 
 BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
@@ -79,6 +87,20 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   for (geometry::Occluder& o : geometry::terrain_occluders(city.terrain, city.bounds().xy,
                                                            options_.blocks.terrain_step, shrink))
     occluders_.push_back(std::move(o));
+  // Buildings that are not height fields keep, through the 3D route, what the blocks' prisms
+  // cannot hold (thesis 7.3.1); on the others it gives about what the blocks give.
+  if (options_.blocks.solid_step > 0) {
+    std::vector<geometry::SolidInput> solids;
+    for (const geometry::CityObject& object : city.objects)
+      if (object.occludes && !object.surfaces.empty())
+        solids.push_back({&object.surfaces, object.ground_z});
+    for (geometry::ShrunkSolid& solid :
+         geometry::shrink_solids(solids, shrink, options_.blocks.solid_step, kSecondsPerSolid)) {
+      if (!solid.declined.empty()) ++solids_declined_[solid.declined];
+      if (!solid.occluders.empty()) ++solids_shrunk_;
+      for (geometry::Occluder& o : solid.occluders) occluders_.push_back(std::move(o));
+    }
+  }
   mesh_ = geometry::build_view_cells(city, options_.cells);
 
   // Two pixels of margin: every object's footprint and every cell lies strictly inside, so the

@@ -13,6 +13,7 @@
 
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/occluders/SolidOccluders.hpp"
 #include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
 #include "urbanpvs/preprocess/bake/BakeJournal.hpp"
@@ -279,6 +280,11 @@ int Run::execute() {
   report_.terrain_occluders = static_cast<std::size_t>(std::count_if(
       scene.occluders().begin(), scene.occluders().end(),
       [](const geometry::Occluder& o) { return o.block == geometry::kTerrainBlock; }));
+  report_.solid_occluders = static_cast<std::size_t>(
+      std::count_if(scene.occluders().begin(), scene.occluders().end(),
+                    [](const geometry::Occluder& o) { return o.block == geometry::kSolidBlock; }));
+  report_.solids_shrunk = scene.solids_shrunk();
+  report_.solids_declined = scene.solids_declined();
   report_.cells = scene.cell_count();
   report_.cell_area = scene.mesh().free_area;
   note("scene: %zu blocks, %zu occluders, %zu view cells (%.2f s)", report_.blocks,

@@ -37,6 +37,13 @@ struct BlockOptions {
   /// mean PVS; on a generated hilly city they took 9.7 % off it at 13 % more time.
   /// [Units: m]
   double terrain_step = 0;
+  /// Each building's solid is also shrunk in 3D (thesis 7.3.1: its outside meshed into
+  /// tetrahedra by TetGen, each enlarged by ε) into ground-standing levels this far apart
+  /// (SolidOccluders.hpp), which join the blocks' occluders: what a building holds over an
+  /// arcade's sides, under an overhang's ground floor or between stacked parts. 0, the default:
+  /// off. Needs a build with URBANPVS_TETGEN=ON (AGPL).
+  /// [Units: m]
+  double solid_step = 0;
 };
 
 /// One step of a block's height field: everything of the block at least `top_z` high.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +49,10 @@ struct BakeReport {
   std::vector<RankShare> ranks;
   std::size_t objects = 0, blocks = 0, occluders = 0, cells = 0;
   std::size_t terrain_occluders = 0;  ///< of `occluders`, the terrain's levels (--terrain-step)
+  /// Of `occluders`, the levels of buildings shrunk in 3D (--solid-step); the buildings that
+  /// gave some, and why the others gave none (reason -> buildings).
+  std::size_t solid_occluders = 0, solids_shrunk = 0;
+  std::map<std::string, std::size_t> solids_declined;
   /// What reading had to do, one line each (ReadReport::repairs, ReadReport::non_occluding),
   /// and what it warns of (ReadReport::warnings).
   std::vector<std::string> repairs, non_occluding, warnings;

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,6 +69,10 @@ class BakeScene {
   const BakeOptions& options() const { return options_; }
   const std::vector<geometry::Block>& blocks() const { return blocks_; }
   const std::vector<geometry::Occluder>& occluders() const { return occluders_; }
+  /// With --solid-step: the buildings the 3D route gave occluders, and why it gave the others
+  /// none (reason -> buildings).
+  std::size_t solids_shrunk() const { return solids_shrunk_; }
+  const std::map<std::string, std::size_t>& solids_declined() const { return solids_declined_; }
   /// Occluder `id` as a sample's horizon takes it from ground distance `distance`: from
   /// BakeOptions::kFarOutlineRatio × far_outline_tolerance on, with its outline simplified
   /// inwards (a polygon inside the occluder, fewer walls to add); nearer, the occluder itself.
@@ -116,6 +121,8 @@ class BakeScene {
   BakeOptions options_;
   std::vector<geometry::Block> blocks_;
   std::vector<geometry::Occluder> occluders_;
+  std::size_t solids_shrunk_ = 0;
+  std::map<std::string, std::size_t> solids_declined_;
   std::vector<geometry::Occluder> far_occluders_;  ///< same order; empty: tolerance 0
   /// From here on the horizons take far_occluders_ (infinity: tolerance 0, none built).
   double far_outline_distance_ = std::numeric_limits<double>::infinity();

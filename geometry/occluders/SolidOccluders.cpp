@@ -1,0 +1,468 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "urbanpvs/geometry/occluders/SolidOccluders.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "LatticeMask.hpp"
+
+#if URBANPVS_HAVE_TETGEN
+#define TETLIBRARY
+#include <tetgen.h>
+#endif
+
+namespace urbanpvs::geometry {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Raster squares of ε/2: the column test widens ε by half a square (a quarter of ε), and a
+// 30 m building takes 60 × 60 columns at the default ε.
+constexpr double kSquarePerEpsilon = 0.5;
+// Vertices closer than this are one vertex of the solid (the input's own precision is a
+// millimetre at best).
+constexpr double kWeld = 1e-4;  // [Units: m]
+// A column must stand in the solid from this far above the ground: an outside that only
+// touches the ground plane (the air under a floor slab at ground level) holds nothing down.
+constexpr double kAboveGround = 0.01;  // [Units: m]
+// The column's box is narrowed by this: the outside's tetrahedra share the solid's faces, and
+// one that only touches the box where a face bounds it takes nothing from the column.
+constexpr double kTouch = 1e-7;  // [Units: m]
+
+/// The z range of a tetrahedron within a vertical column over `box` (empty: lo > hi).
+struct ZRange {
+  double lo = kInfinity, hi = -kInfinity;
+  void add(double z) {
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+};
+
+bool in_box(const Box2& b, double x, double y) {
+  return x >= b.min.x && x <= b.max.x && y >= b.min.y && y <= b.max.y;
+}
+
+/// The lowest and highest points of t ∩ (box × ℝ). Both are vertices of that polytope, and
+/// each such vertex is a corner of t in the column, a crossing of an edge of t with a side of
+/// the column, or a crossing of a vertical edge of the column with a face of t.
+ZRange column_range(const std::array<Vec3, 4>& t, const Box2& box) {
+  ZRange r;
+  for (const Vec3& v : t)
+    if (in_box(box, v.x, v.y)) r.add(v.z);
+  static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (const auto& e : kEdges) {
+    const Vec3& p = t[static_cast<std::size_t>(e[0])];
+    const Vec3& q = t[static_cast<std::size_t>(e[1])];
+    for (const double x : {box.min.x, box.max.x}) {
+      if (p.x == q.x || (p.x - x) * (q.x - x) > 0) continue;
+      const double s = (x - p.x) / (q.x - p.x);
+      const double y = p.y + s * (q.y - p.y);
+      if (y >= box.min.y && y <= box.max.y) r.add(p.z + s * (q.z - p.z));
+    }
+    for (const double y : {box.min.y, box.max.y}) {
+      if (p.y == q.y || (p.y - y) * (q.y - y) > 0) continue;
+      const double s = (y - p.y) / (q.y - p.y);
+      const double x = p.x + s * (q.x - p.x);
+      if (x >= box.min.x && x <= box.max.x) r.add(p.z + s * (q.z - p.z));
+    }
+  }
+  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  for (const auto& f : kFaces) {
+    const Vec3& a = t[static_cast<std::size_t>(f[0])];
+    const Vec3& b = t[static_cast<std::size_t>(f[1])];
+    const Vec3& c = t[static_cast<std::size_t>(f[2])];
+    const double d = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    if (std::abs(d) < 1e-12) continue;  // a vertical face: its corners in the column are above
+    for (const double x : {box.min.x, box.max.x})
+      for (const double y : {box.min.y, box.max.y}) {
+        const double lb = ((c.x - x) * (a.y - y) - (a.x - x) * (c.y - y)) / d;
+        const double lc = ((a.x - x) * (b.y - y) - (b.x - x) * (a.y - y)) / d;
+        const double la = 1 - lb - lc;
+        if (la >= -1e-12 && lb >= -1e-12 && lc >= -1e-12) r.add(la * a.z + lb * b.z + lc * c.z);
+      }
+  }
+  return r;
+}
+
+/// The solid's faces as a TetGen PLC: welded vertices (around `centre`, for the predicates'
+/// sake) and polygons of three or more distinct vertices, each face once.
+struct Plc {
+  std::vector<Vec3> points;
+  std::vector<std::vector<int>> faces;
+  std::string problem;  ///< why the surfaces cannot be meshed as given
+};
+
+/// Appends the triangles of `face` (a simple polygon in 3D, planar or nearly) by ear clipping
+/// in the plane its normal is largest across. Corners on a straight line are never ears, so no
+/// triangle is flat; false if the face has no ear left (not simple).
+bool triangulate(const std::vector<Vec3>& points, const std::vector<int>& face,
+                 std::vector<std::vector<int>>& out) {
+  Vec3 n{0, 0, 0};  // Newell's normal
+  for (std::size_t k = 0; k < face.size(); ++k)
+    n += glm::cross(points[static_cast<std::size_t>(face[k])],
+                    points[static_cast<std::size_t>(face[(k + 1) % face.size()])]);
+  const Vec3 a = glm::abs(n);
+  const int drop = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  const double sign = (drop == 0 ? n.x : drop == 1 ? n.y : n.z) > 0 ? 1 : -1;
+  auto uv = [&](int v) {
+    const Vec3& p = points[static_cast<std::size_t>(v)];
+    const Vec2 q = drop == 0 ? Vec2{p.y, p.z} : drop == 1 ? Vec2{p.z, p.x} : Vec2{p.x, p.y};
+    return Vec2{q.x, sign * q.y};  // counter-clockwise
+  };
+  auto turn = [](Vec2 p, Vec2 q, Vec2 r) {
+    return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+  };
+  std::vector<int> ring = face;
+  while (ring.size() > 3) {
+    bool clipped = false;
+    for (std::size_t k = 0; k < ring.size() && !clipped; ++k) {
+      const std::size_t i = (k + ring.size() - 1) % ring.size(), j = (k + 1) % ring.size();
+      const Vec2 p = uv(ring[i]), q = uv(ring[k]), r = uv(ring[j]);
+      const double t = turn(p, q, r);
+      const double scale = std::max(glm::dot(q - p, q - p), glm::dot(r - q, r - q));
+      if (!(t > 1e-12 * scale)) continue;  // reflex or straight
+      bool empty = true;
+      for (std::size_t m = 0; m < ring.size() && empty; ++m) {
+        if (m == i || m == k || m == j) continue;
+        const Vec2 s = uv(ring[m]);
+        if (s == p || s == q || s == r) continue;  // a repeated corner
+        empty = !(turn(p, q, s) >= 0 && turn(q, r, s) >= 0 && turn(r, p, s) >= 0);
+      }
+      if (!empty) continue;
+      out.push_back({ring[i], ring[k], ring[j]});
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+      clipped = true;
+    }
+    if (!clipped) return false;
+  }
+  const Vec2 p = uv(ring[0]), q = uv(ring[1]), r = uv(ring[2]);
+  if (turn(p, q, r) > 0) out.push_back(ring);  // a flat last triangle is no face
+  return true;
+}
+
+/// Removes, until none is left, every face with an edge that no other face has. Such a face
+/// bounds no volume: a LoD0 footprint that a reader keeps beside the solid, or a wall of a shell
+/// with a gap. Left in, it would cut through the solid, which is no PLC; taken out, a closed
+/// solid loses nothing and an open one stays open.
+void drop_open_faces(Plc& plc) {
+  for (bool dropped = true; dropped;) {
+    dropped = false;
+    std::map<std::pair<int, int>, int> uses;
+    auto edge = [](int a, int b) { return a < b ? std::pair{a, b} : std::pair{b, a}; };
+    for (const std::vector<int>& f : plc.faces)
+      for (std::size_t k = 0; k < f.size(); ++k) ++uses[edge(f[k], f[(k + 1) % f.size()])];
+    std::vector<std::vector<int>> kept;
+    for (std::vector<int>& f : plc.faces) {
+      bool open = false;
+      for (std::size_t k = 0; k < f.size() && !open; ++k)
+        open = uses[edge(f[k], f[(k + 1) % f.size()])] < 2;
+      if (open)
+        dropped = true;
+      else
+        kept.push_back(std::move(f));
+    }
+    plc.faces = std::move(kept);
+  }
+}
+
+/// Inserts into every face edge the vertices that lie on it. Faces of real solids often meet
+/// in T-junctions (a wall's top edge runs past the corner of the part on it), and a PLC whose
+/// vertex lies inside another face's edge is invalid: TetGen crashes on it.
+void split_at_t_junctions(Plc& plc) {
+  std::vector<int> split;
+  std::vector<std::pair<double, int>> on_edge;
+  for (std::vector<int>& face : plc.faces) {
+    split.clear();
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const int a = face[k], b = face[(k + 1) % face.size()];
+      split.push_back(a);
+      const Vec3 p = plc.points[static_cast<std::size_t>(a)];
+      const Vec3 d = plc.points[static_cast<std::size_t>(b)] - p;
+      const double length2 = glm::dot(d, d);
+      if (length2 == 0) continue;
+      on_edge.clear();
+      for (std::size_t v = 0; v < plc.points.size(); ++v) {
+        if (static_cast<int>(v) == a || static_cast<int>(v) == b) continue;
+        const Vec3 w = plc.points[v] - p;
+        const double t = glm::dot(w, d) / length2;
+        if (t <= 0 || t >= 1) continue;
+        const Vec3 off = w - t * d;
+        if (glm::dot(off, off) <= kWeld * kWeld) on_edge.emplace_back(t, static_cast<int>(v));
+      }
+      std::sort(on_edge.begin(), on_edge.end());
+      for (const auto& [t, v] : on_edge) split.push_back(v);
+    }
+    face = split;
+  }
+}
+
+Plc plc_of(const std::vector<Surface3>& surfaces, const Vec3& centre) {
+  Plc plc;
+  std::map<std::array<long long, 3>, int> index;
+  std::set<std::vector<int>> seen;
+  for (const Surface3& s : surfaces) {
+    if (!s.blocks) {
+      plc.problem = "a surface bounds where the building may be, not where it is";
+      return plc;
+    }
+    if (s.rings.size() != 1) {
+      plc.problem = "a surface with holes";
+      return plc;
+    }
+    std::vector<int> face;
+    for (const Vec3& v : s.rings.front()) {
+      const Vec3 p = v - centre;
+      const std::array<long long, 3> key = {std::llround(p.x / kWeld), std::llround(p.y / kWeld),
+                                            std::llround(p.z / kWeld)};
+      auto [it, added] = index.emplace(key, static_cast<int>(plc.points.size()));
+      if (added) plc.points.push_back(p);
+      if (face.empty() || face.back() != it->second) face.push_back(it->second);
+    }
+    while (face.size() > 1 && face.front() == face.back()) face.pop_back();
+    std::vector<int> key = face;
+    std::sort(key.begin(), key.end());
+    if (std::unique(key.begin(), key.end()) - key.begin() < 3) continue;  // no area
+    if (!seen.insert(key).second) continue;  // the face two parts share
+    plc.faces.push_back(std::move(face));
+  }
+  if (plc.faces.size() < 4) plc.problem = "fewer than four faces";
+  split_at_t_junctions(plc);
+  drop_open_faces(plc);
+  if (plc.faces.size() < 4) {
+    plc.problem = "its faces close no volume";
+    return plc;
+  }
+  // TetGen meshes each facet in its plane: a face of real data is planar only to its
+  // coordinates' rounding, and meshed in a plane of its own it crosses its neighbours. Its
+  // triangles are planar whatever the rounding.
+  std::vector<std::vector<int>> triangles;
+  for (const std::vector<int>& face : plc.faces)
+    if (!triangulate(plc.points, face, triangles)) {
+      plc.problem = "a face that does not triangulate";
+      return plc;
+    }
+  plc.faces = std::move(triangles);
+  return plc;
+}
+
+#if URBANPVS_HAVE_TETGEN
+
+/// The exterior tetrahedra of the solid within `outer` (a box around it, relative to the
+/// PLC's centre), or a reason in `problem`.
+std::vector<std::array<Vec3, 4>> exterior_tetrahedra(const Plc& plc, const Vec3& lo, const Vec3& hi,
+                                                     std::string& problem) {
+  tetgenio in, out;
+  in.firstnumber = 0;
+  const std::size_t n = plc.points.size();
+  in.numberofpoints = static_cast<int>(n + 8);
+  in.pointlist = new REAL[3 * (n + 8)];
+  for (std::size_t k = 0; k < n; ++k) {
+    in.pointlist[3 * k] = plc.points[k].x;
+    in.pointlist[3 * k + 1] = plc.points[k].y;
+    in.pointlist[3 * k + 2] = plc.points[k].z;
+  }
+  for (std::size_t c = 0; c < 8; ++c) {  // the box's corners: bit 0 x, bit 1 y, bit 2 z
+    in.pointlist[3 * (n + c)] = (c & 1) ? hi.x : lo.x;
+    in.pointlist[3 * (n + c) + 1] = (c & 2) ? hi.y : lo.y;
+    in.pointlist[3 * (n + c) + 2] = (c & 4) ? hi.z : lo.z;
+  }
+  static constexpr int kBoxFaces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                          {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+  const std::size_t faces = plc.faces.size() + 6;
+  in.numberoffacets = static_cast<int>(faces);
+  in.facetlist = new tetgenio::facet[faces];
+  for (std::size_t f = 0; f < faces; ++f) {
+    tetgenio::facet& facet = in.facetlist[f];
+    facet.numberofpolygons = 1;
+    facet.polygonlist = new tetgenio::polygon[1];
+    facet.numberofholes = 0;
+    facet.holelist = nullptr;
+    tetgenio::polygon& polygon = facet.polygonlist[0];
+    if (f < plc.faces.size()) {
+      const std::vector<int>& face = plc.faces[f];
+      polygon.numberofvertices = static_cast<int>(face.size());
+      polygon.vertexlist = new int[face.size()];
+      std::copy(face.begin(), face.end(), polygon.vertexlist);
+    } else {
+      polygon.numberofvertices = 4;
+      polygon.vertexlist = new int[4];
+      for (int k = 0; k < 4; ++k)
+        polygon.vertexlist[k] = static_cast<int>(n) + kBoxFaces[f - plc.faces.size()][k];
+    }
+  }
+  // One seed in the box's corner, outside the solid: with -A, the tetrahedra it reaches
+  // without crossing a face get its attribute, every enclosed region another. (Mistaking the
+  // inside for the outside would only take columns away.)
+  constexpr REAL kOutside = -1;  // TetGen numbers the regions without a seed from 1 up
+  in.numberofregions = 1;
+  in.regionlist = new REAL[5]{lo.x + 0.25, lo.y + 0.25, lo.z + 0.25, kOutside, -1};
+  try {
+    // Faces that cross each other are not a PLC, and TetGen 1.5 may crash on them instead of
+    // refusing them: its -d pass lists such faces without meshing, so it goes first.
+    {
+      tetgenio check;
+      char detect[] = "pdQ";
+      tetrahedralize(detect, &in, &check);
+      if (check.numberoftrifaces > 0) {
+        problem = "its faces intersect each other (TetGen -d)";
+        return {};
+      }
+    }
+    char switches[] = "pQA";
+    tetrahedralize(switches, &in, &out);
+  } catch (int code) {
+    problem = "TetGen refused the surfaces (error " + std::to_string(code) +
+              (code == 3 ? ": they intersect each other)" : ")");
+    return {};
+  } catch (...) {
+    problem = "TetGen failed on the surfaces";
+    return {};
+  }
+  std::vector<std::array<Vec3, 4>> exterior;
+  if (out.numberoftetrahedronattributes < 1) {
+    problem = "TetGen gave no regions";
+    return exterior;
+  }
+  const int corners = out.numberofcorners;
+  for (int t = 0; t < out.numberoftetrahedra; ++t) {
+    if (out.tetrahedronattributelist[static_cast<std::size_t>(t) *
+                                     static_cast<std::size_t>(out.numberoftetrahedronattributes)] !=
+        kOutside)
+      continue;
+    std::array<Vec3, 4> tet;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const auto p = static_cast<std::size_t>(
+          out.tetrahedronlist[static_cast<std::size_t>(t) * static_cast<std::size_t>(corners) + k]);
+      tet[k] = {out.pointlist[3 * p], out.pointlist[3 * p + 1], out.pointlist[3 * p + 2]};
+    }
+    exterior.push_back(tet);
+  }
+  return exterior;
+}
+
+#endif
+
+}  // namespace
+
+bool solid_shrinking_available() {
+  return URBANPVS_HAVE_TETGEN != 0;
+}
+
+ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z, double epsilon,
+                         double step) {
+  ShrunkSolid result;
+#if !URBANPVS_HAVE_TETGEN
+  (void)surfaces, (void)ground_z, (void)epsilon, (void)step;
+  result.declined = "built without TetGen (URBANPVS_TETGEN=OFF)";
+  return result;
+#else
+  if (!(epsilon > 0) || !(step > 0)) {
+    result.declined = "ε and the level step must be positive";
+    return result;
+  }
+  Box3 extent;
+  for (const Surface3& s : surfaces)
+    for (const auto& ring : s.rings)
+      for (const Vec3& v : ring) extent.extend(Vec2{v.x, v.y}, v.z);
+  if (extent.xy.empty()) {
+    result.declined = "no surfaces";
+    return result;
+  }
+  const Vec3 centre = {(extent.xy.min.x + extent.xy.max.x) / 2,
+                       (extent.xy.min.y + extent.xy.max.y) / 2, (extent.zmin + extent.zmax) / 2};
+  const Plc plc = plc_of(surfaces, centre);
+  if (!plc.problem.empty()) {
+    result.declined = plc.problem;
+    return result;
+  }
+  // The columns: squares over the solid's plan, each tested with a box of half-side
+  // ε + square / 2 around its centre (a point's disk of radius ε lies in it).
+  const double square = kSquarePerEpsilon * epsilon;
+  const double reach = epsilon + square / 2 - kTouch;
+  const Box2 plan = {{extent.xy.min.x - centre.x, extent.xy.min.y - centre.y},
+                     {extent.xy.max.x - centre.x, extent.xy.max.y - centre.y}};
+  const int columns = std::max(1, static_cast<int>(std::ceil((plan.max.x - plan.min.x) / square)));
+  const int rows = std::max(1, static_cast<int>(std::ceil((plan.max.y - plan.min.y) / square)));
+  // The meshed box reaches past every column's test box, and a metre below and above.
+  const double margin = reach + 1;
+  const Vec3 lo = {plan.min.x - margin, plan.min.y - margin, extent.zmin - centre.z - 1};
+  const Vec3 hi = {plan.min.x + columns * square + margin, plan.min.y + rows * square + margin,
+                   extent.zmax - centre.z + 1};
+  const std::vector<std::array<Vec3, 4>> exterior =
+      exterior_tetrahedra(plc, lo, hi, result.declined);
+  if (!result.declined.empty()) return result;
+  result.exterior_tetrahedra = exterior.size();
+
+  // Each column's top: the lowest point, above the ground, of the outside within its box.
+  const double floor_z = ground_z - centre.z + kAboveGround;
+  std::vector<double> top(static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows),
+                          kInfinity);
+  for (const std::array<Vec3, 4>& t : exterior) {
+    Box2 b;
+    for (const Vec3& v : t) b.extend(Vec2{v.x, v.y});
+    auto first = [&](double from, double origin) {
+      return static_cast<int>(std::floor((from - reach - origin) / square - 0.5));
+    };
+    auto last = [&](double to, double origin) {
+      return static_cast<int>(std::ceil((to + reach - origin) / square - 0.5));
+    };
+    const int i0 = std::max(0, first(b.min.x, plan.min.x));
+    const int i1 = std::min(columns - 1, last(b.max.x, plan.min.x));
+    const int j0 = std::max(0, first(b.min.y, plan.min.y));
+    const int j1 = std::min(rows - 1, last(b.max.y, plan.min.y));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Vec2 c = {plan.min.x + (i + 0.5) * square, plan.min.y + (j + 0.5) * square};
+        const ZRange r = column_range(t, {{c.x - reach, c.y - reach}, {c.x + reach, c.y + reach}});
+        if (r.lo > r.hi || r.hi < floor_z) continue;  // misses the column, or under the ground
+        double& z = top[static_cast<std::size_t>(j) * static_cast<std::size_t>(columns) +
+                        static_cast<std::size_t>(i)];
+        z = std::min(z, std::max(r.lo, floor_z));
+      }
+  }
+
+  // Levels every `step` above the ground, each top rounded down onto one.
+  std::vector<double> level(top.size(), -kInfinity);
+  std::set<double, std::greater<>> tops;
+  for (std::size_t k = 0; k < top.size(); ++k) {
+    const double base = ground_z - centre.z;
+    // Rounding in the tops' interpolation is forgiven up to kTouch: a roof at 10 m stays a
+    // level at 10 m when its column's top comes out as 10 - 1e-15.
+    double h = base + std::floor((top[k] + kTouch - base) / step) * step;
+    if (h > top[k] + kTouch) h -= step;
+    if (!(h > floor_z) || !std::isfinite(h)) continue;
+    level[k] = h;
+    tops.insert(h);
+  }
+  std::vector<double> xs(static_cast<std::size_t>(columns) + 1),
+      ys(static_cast<std::size_t>(rows) + 1);
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    xs[i] = plan.min.x + static_cast<double>(i) * square + centre.x;
+  for (std::size_t j = 0; j < ys.size(); ++j)
+    ys[j] = plan.min.y + static_cast<double>(j) * square + centre.y;
+  for (const double h : tops) {
+    LatticeMask mask(xs, ys);
+    for (int j = 0; j < rows; ++j)
+      for (int i = 0; i < columns; ++i)
+        mask.set(i, j,
+                 level[static_cast<std::size_t>(j) * static_cast<std::size_t>(columns) +
+                       static_cast<std::size_t>(i)] >= h);
+    mask.separate_diagonals();
+    std::vector<Polygon> shapes;
+    // Rings that do not assemble are left out: an occluder may always be smaller.
+    if (!mask.polygons(shapes)) continue;
+    for (Polygon& p : shapes) {
+      const Box2 box = bounds(p);
+      result.occluders.push_back({kSolidBlock, h + centre.z, std::move(p), box});
+    }
+  }
+  if (tops.empty()) result.declined = "no column stands in the solid at least ε from its outside";
+  return result;
+#endif
+}
+
+}  // namespace urbanpvs::geometry
