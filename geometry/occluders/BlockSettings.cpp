@@ -25,8 +25,9 @@ const SettingTable<BlockOptions>& block_settings() {
           [](B& b) -> double& { return b.terrain_step; }),
       number_setting<B>(
           "solid-step", "m", S::Occluders, 0, 100,
-          "Each building's solid is also shrunk in 3D (TetGen) into ground-standing levels this "
-          "far apart (0: off; experimental; needs a build with URBANPVS_TETGEN=ON)",
+          "Buildings that are not height fields (arcades, overhangs) are also shrunk in 3D "
+          "(TetGen) into ground-standing levels this far apart (0: off; experimental; needs a "
+          "build with URBANPVS_TETGEN=ON)",
           [](B& b) -> double& { return b.solid_step; }),
   };
   return table;

@@ -9,6 +9,7 @@
 #include <set>
 #include <utility>
 
+#include "FaceTriangulation.hpp"
 #include "LatticeMask.hpp"
 
 #if URBANPVS_HAVE_TETGEN
@@ -26,6 +27,11 @@ constexpr double kSquarePerEpsilon = 0.5;
 // Vertices closer than this are one vertex of the solid (the input's own precision is a
 // millimetre at best).
 constexpr double kWeld = 1e-4;  // [Units: m]
+// An open loop of edges this close to the ground is the solid's missing bottom.
+constexpr double kCapRise = 0.25;  // [Units: m]
+// A face whose normal points this far down (the cosine of its angle to the vertical) is an
+// underside: steeper ones are walls.
+constexpr double kFacesDown = 0.5;
 // A column must stand in the solid from this far above the ground: an outside that only
 // touches the ground plane (the air under a floor slab at ground level) holds nothing down.
 constexpr double kAboveGround = 0.01;  // [Units: m]
@@ -92,78 +98,33 @@ ZRange column_range(const std::array<Vec3, 4>& t, const Box2& box) {
 /// sake) and polygons of three or more distinct vertices, each face once.
 struct Plc {
   std::vector<Vec3> points;
-  std::vector<std::vector<int>> faces;
+  /// Each face's rings, outer first; after triangulation, one ring of three per face.
+  std::vector<std::vector<std::vector<int>>> faces;
   std::string problem;  ///< why the surfaces cannot be meshed as given
 };
-
-/// Appends the triangles of `face` (a simple polygon in 3D, planar or nearly) by ear clipping
-/// in the plane its normal is largest across. Corners on a straight line are never ears, so no
-/// triangle is flat; false if the face has no ear left (not simple).
-bool triangulate(const std::vector<Vec3>& points, const std::vector<int>& face,
-                 std::vector<std::vector<int>>& out) {
-  Vec3 n{0, 0, 0};  // Newell's normal
-  for (std::size_t k = 0; k < face.size(); ++k)
-    n += glm::cross(points[static_cast<std::size_t>(face[k])],
-                    points[static_cast<std::size_t>(face[(k + 1) % face.size()])]);
-  const Vec3 a = glm::abs(n);
-  const int drop = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-  const double sign = (drop == 0 ? n.x : drop == 1 ? n.y : n.z) > 0 ? 1 : -1;
-  auto uv = [&](int v) {
-    const Vec3& p = points[static_cast<std::size_t>(v)];
-    const Vec2 q = drop == 0 ? Vec2{p.y, p.z} : drop == 1 ? Vec2{p.z, p.x} : Vec2{p.x, p.y};
-    return Vec2{q.x, sign * q.y};  // counter-clockwise
-  };
-  auto turn = [](Vec2 p, Vec2 q, Vec2 r) {
-    return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
-  };
-  std::vector<int> ring = face;
-  while (ring.size() > 3) {
-    bool clipped = false;
-    for (std::size_t k = 0; k < ring.size() && !clipped; ++k) {
-      const std::size_t i = (k + ring.size() - 1) % ring.size(), j = (k + 1) % ring.size();
-      const Vec2 p = uv(ring[i]), q = uv(ring[k]), r = uv(ring[j]);
-      const double t = turn(p, q, r);
-      const double scale = std::max(glm::dot(q - p, q - p), glm::dot(r - q, r - q));
-      if (!(t > 1e-12 * scale)) continue;  // reflex or straight
-      bool empty = true;
-      for (std::size_t m = 0; m < ring.size() && empty; ++m) {
-        if (m == i || m == k || m == j) continue;
-        const Vec2 s = uv(ring[m]);
-        if (s == p || s == q || s == r) continue;  // a repeated corner
-        empty = !(turn(p, q, s) >= 0 && turn(q, r, s) >= 0 && turn(r, p, s) >= 0);
-      }
-      if (!empty) continue;
-      out.push_back({ring[i], ring[k], ring[j]});
-      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-      clipped = true;
-    }
-    if (!clipped) return false;
-  }
-  const Vec2 p = uv(ring[0]), q = uv(ring[1]), r = uv(ring[2]);
-  if (turn(p, q, r) > 0) out.push_back(ring);  // a flat last triangle is no face
-  return true;
-}
 
 /// Removes, until none is left, every face with an edge that no other face has. Such a face
 /// bounds no volume: a LoD0 footprint that a reader keeps beside the solid, or a wall of a shell
 /// with a gap. Left in, it would cut through the solid, which is no PLC; taken out, a closed
 /// solid loses nothing and an open one stays open.
 void drop_open_faces(Plc& plc) {
+  auto edge = [](int a, int b) { return a < b ? std::pair{a, b} : std::pair{b, a}; };
   for (bool dropped = true; dropped;) {
     dropped = false;
     std::map<std::pair<int, int>, int> uses;
-    auto edge = [](int a, int b) { return a < b ? std::pair{a, b} : std::pair{b, a}; };
-    for (const std::vector<int>& f : plc.faces)
-      for (std::size_t k = 0; k < f.size(); ++k) ++uses[edge(f[k], f[(k + 1) % f.size()])];
-    std::vector<std::vector<int>> kept;
-    for (std::vector<int>& f : plc.faces) {
+    for (const auto& face : plc.faces)
+      for (const std::vector<int>& r : face)
+        for (std::size_t k = 0; k < r.size(); ++k) ++uses[edge(r[k], r[(k + 1) % r.size()])];
+    std::vector<std::vector<std::vector<int>>> kept;
+    for (auto& face : plc.faces) {
       bool open = false;
-      for (std::size_t k = 0; k < f.size() && !open; ++k)
-        open = uses[edge(f[k], f[(k + 1) % f.size()])] < 2;
+      for (const std::vector<int>& r : face)
+        for (std::size_t k = 0; k < r.size() && !open; ++k)
+          open = uses[edge(r[k], r[(k + 1) % r.size()])] < 2;
       if (open)
         dropped = true;
       else
-        kept.push_back(std::move(f));
+        kept.push_back(std::move(face));
     }
     plc.faces = std::move(kept);
   }
@@ -175,32 +136,80 @@ void drop_open_faces(Plc& plc) {
 void split_at_t_junctions(Plc& plc) {
   std::vector<int> split;
   std::vector<std::pair<double, int>> on_edge;
-  for (std::vector<int>& face : plc.faces) {
-    split.clear();
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      const int a = face[k], b = face[(k + 1) % face.size()];
-      split.push_back(a);
-      const Vec3 p = plc.points[static_cast<std::size_t>(a)];
-      const Vec3 d = plc.points[static_cast<std::size_t>(b)] - p;
-      const double length2 = glm::dot(d, d);
-      if (length2 == 0) continue;
-      on_edge.clear();
-      for (std::size_t v = 0; v < plc.points.size(); ++v) {
-        if (static_cast<int>(v) == a || static_cast<int>(v) == b) continue;
-        const Vec3 w = plc.points[v] - p;
-        const double t = glm::dot(w, d) / length2;
-        if (t <= 0 || t >= 1) continue;
-        const Vec3 off = w - t * d;
-        if (glm::dot(off, off) <= kWeld * kWeld) on_edge.emplace_back(t, static_cast<int>(v));
+  for (auto& face : plc.faces)
+    for (std::vector<int>& ring : face) {
+      split.clear();
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const int a = ring[k], b = ring[(k + 1) % ring.size()];
+        split.push_back(a);
+        const Vec3 p = plc.points[static_cast<std::size_t>(a)];
+        const Vec3 d = plc.points[static_cast<std::size_t>(b)] - p;
+        const double length2 = glm::dot(d, d);
+        if (length2 == 0) continue;
+        on_edge.clear();
+        for (std::size_t v = 0; v < plc.points.size(); ++v) {
+          if (static_cast<int>(v) == a || static_cast<int>(v) == b) continue;
+          const Vec3 w = plc.points[v] - p;
+          const double t = glm::dot(w, d) / length2;
+          if (t <= 0 || t >= 1) continue;
+          const Vec3 off = w - t * d;
+          if (glm::dot(off, off) <= kWeld * kWeld) on_edge.emplace_back(t, static_cast<int>(v));
+        }
+        std::sort(on_edge.begin(), on_edge.end());
+        for (const auto& [t, v] : on_edge) split.push_back(v);
       }
-      std::sort(on_edge.begin(), on_edge.end());
-      for (const auto& [t, v] : on_edge) split.push_back(v);
+      ring = split;
     }
-    face = split;
+}
+
+/// Closes the solid's open bottom: each loop of edges that one face only has, lying within
+/// kCapRise of the ground, becomes a face. LoD2 models often leave out the ground surface
+/// (the Delft sample derives its footprints from the roofs), and the occluders stand on the
+/// ground anyway (thesis 4.2.1), so closing the solid there assumes nothing they do not.
+void cap_ground_loops(Plc& plc, double ground) {
+  auto edge = [](int a, int b) { return a < b ? std::pair{a, b} : std::pair{b, a}; };
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& face : plc.faces)
+    for (const std::vector<int>& r : face)
+      for (std::size_t k = 0; k < r.size(); ++k) ++uses[edge(r[k], r[(k + 1) % r.size()])];
+  // A face that shares no edge with any other stands alone (a LoD0 footprint kept beside the
+  // solid): its outline is no opening of the shell, and it goes before any loop is capped.
+  std::erase_if(plc.faces, [&](const std::vector<std::vector<int>>& face) {
+    for (const std::vector<int>& r : face)
+      for (std::size_t k = 0; k < r.size(); ++k)
+        if (uses[edge(r[k], r[(k + 1) % r.size()])] > 1) return false;
+    for (const std::vector<int>& r : face)
+      for (std::size_t k = 0; k < r.size(); ++k) --uses[edge(r[k], r[(k + 1) % r.size()])];
+    return true;
+  });
+  std::map<int, int> next;  // the open edges, as their faces run
+  for (const auto& face : plc.faces)
+    for (const std::vector<int>& r : face)
+      for (std::size_t k = 0; k < r.size(); ++k) {
+        const int a = r[k], b = r[(k + 1) % r.size()];
+        if (uses[edge(a, b)] != 1) continue;
+        if (!next.emplace(a, b).second) return;  // two open edges leave a: no loop to trust
+      }
+  while (!next.empty()) {
+    std::vector<int> loop;
+    int at = next.begin()->first;
+    while (true) {
+      const auto it = next.find(at);
+      if (it == next.end()) break;
+      loop.push_back(at);
+      at = it->second;
+      next.erase(it);
+    }
+    const bool closed = !loop.empty() && at == loop.front();
+    const bool low = std::all_of(loop.begin(), loop.end(), [&](int v) {
+      return plc.points[static_cast<std::size_t>(v)].z <= ground + kCapRise;
+    });
+    if (closed && low && loop.size() >= 3)
+      plc.faces.push_back({std::vector<int>(loop.rbegin(), loop.rend())});
   }
 }
 
-Plc plc_of(const std::vector<Surface3>& surfaces, const Vec3& centre) {
+Plc plc_of(const std::vector<Surface3>& surfaces, const Vec3& centre, double ground) {
   Plc plc;
   std::map<std::array<long long, 3>, int> index;
   std::set<std::vector<int>> seen;
@@ -209,28 +218,33 @@ Plc plc_of(const std::vector<Surface3>& surfaces, const Vec3& centre) {
       plc.problem = "a surface bounds where the building may be, not where it is";
       return plc;
     }
-    if (s.rings.size() != 1) {
-      plc.problem = "a surface with holes";
-      return plc;
+    std::vector<std::vector<int>> face;
+    for (const std::vector<Vec3>& input : s.rings) {
+      std::vector<int> ring;
+      for (const Vec3& v : input) {
+        const Vec3 p = v - centre;
+        const std::array<long long, 3> key = {std::llround(p.x / kWeld), std::llround(p.y / kWeld),
+                                              std::llround(p.z / kWeld)};
+        auto [it, added] = index.emplace(key, static_cast<int>(plc.points.size()));
+        if (added) plc.points.push_back(p);
+        if (ring.empty() || ring.back() != it->second) ring.push_back(it->second);
+      }
+      while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+      if (ring.size() >= 3)
+        face.push_back(std::move(ring));
+      else if (face.empty())
+        break;  // an outer ring of no area: the face has none
     }
-    std::vector<int> face;
-    for (const Vec3& v : s.rings.front()) {
-      const Vec3 p = v - centre;
-      const std::array<long long, 3> key = {std::llround(p.x / kWeld), std::llround(p.y / kWeld),
-                                            std::llround(p.z / kWeld)};
-      auto [it, added] = index.emplace(key, static_cast<int>(plc.points.size()));
-      if (added) plc.points.push_back(p);
-      if (face.empty() || face.back() != it->second) face.push_back(it->second);
-    }
-    while (face.size() > 1 && face.front() == face.back()) face.pop_back();
-    std::vector<int> key = face;
+    if (face.empty()) continue;
+    std::vector<int> key;
+    for (const std::vector<int>& r : face) key.insert(key.end(), r.begin(), r.end());
     std::sort(key.begin(), key.end());
     if (std::unique(key.begin(), key.end()) - key.begin() < 3) continue;  // no area
     if (!seen.insert(key).second) continue;  // the face two parts share
     plc.faces.push_back(std::move(face));
   }
-  if (plc.faces.size() < 4) plc.problem = "fewer than four faces";
   split_at_t_junctions(plc);
+  cap_ground_loops(plc, ground);
   drop_open_faces(plc);
   if (plc.faces.size() < 4) {
     plc.problem = "its faces close no volume";
@@ -239,13 +253,14 @@ Plc plc_of(const std::vector<Surface3>& surfaces, const Vec3& centre) {
   // TetGen meshes each facet in its plane: a face of real data is planar only to its
   // coordinates' rounding, and meshed in a plane of its own it crosses its neighbours. Its
   // triangles are planar whatever the rounding.
-  std::vector<std::vector<int>> triangles;
-  for (const std::vector<int>& face : plc.faces)
-    if (!triangulate(plc.points, face, triangles)) {
-      plc.problem = "a face that does not triangulate";
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& face : plc.faces)
+    if (!triangulate_face(plc.points, face, triangles)) {
+      plc.problem = "a face whose rings cross";
       return plc;
     }
-  plc.faces = std::move(triangles);
+  plc.faces.clear();
+  for (const std::array<int, 3>& t : triangles) plc.faces.push_back({{t[0], t[1], t[2]}});
   return plc;
 }
 
@@ -283,7 +298,7 @@ std::vector<std::array<Vec3, 4>> exterior_tetrahedra(const Plc& plc, const Vec3&
     facet.holelist = nullptr;
     tetgenio::polygon& polygon = facet.polygonlist[0];
     if (f < plc.faces.size()) {
-      const std::vector<int>& face = plc.faces[f];
+      const std::vector<int>& face = plc.faces[f].front();
       polygon.numberofvertices = static_cast<int>(face.size());
       polygon.vertexlist = new int[face.size()];
       std::copy(face.begin(), face.end(), polygon.vertexlist);
@@ -348,6 +363,21 @@ std::vector<std::array<Vec3, 4>> exterior_tetrahedra(const Plc& plc, const Vec3&
 
 }  // namespace
 
+bool overhangs(const std::vector<Surface3>& surfaces, double ground_z) {
+  for (const Surface3& s : surfaces) {
+    if (s.rings.empty() || s.rings.front().size() < 3) continue;
+    const std::vector<Vec3>& r = s.rings.front();
+    Vec3 n{0, 0, 0};  // Newell's normal
+    double low = r.front().z;
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      n += glm::cross(r[k], r[(k + 1) % r.size()]);
+      low = std::min(low, r[k].z);
+    }
+    if (n.z < -kFacesDown * glm::length(n) && low > ground_z + kCapRise) return true;
+  }
+  return false;
+}
+
 bool solid_shrinking_available() {
   return URBANPVS_HAVE_TETGEN != 0;
 }
@@ -374,7 +404,7 @@ ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z,
   }
   const Vec3 centre = {(extent.xy.min.x + extent.xy.max.x) / 2,
                        (extent.xy.min.y + extent.xy.max.y) / 2, (extent.zmin + extent.zmax) / 2};
-  const Plc plc = plc_of(surfaces, centre);
+  const Plc plc = plc_of(surfaces, centre, ground_z - centre.z);
   if (!plc.problem.empty()) {
     result.declined = plc.problem;
     return result;

@@ -135,7 +135,7 @@ bool write_all(int fd, const std::vector<unsigned char>& data) {
 
 /// The child: shrinks inputs[first, end) and writes each result; never returns.
 [[noreturn]] void child(int fd, const std::vector<SolidInput>& inputs, std::size_t first,
-                        double epsilon, double step) {
+                        const std::function<ShrunkSolid(const SolidInput&)>& shrink) {
   // TetGen's assertions and messages would land in the bake's own output; the parent reports
   // what became of each building.
   const int null = ::open("/dev/null", O_WRONLY);
@@ -145,7 +145,7 @@ bool write_all(int fd, const std::vector<unsigned char>& data) {
     ::close(null);
   }
   for (std::size_t k = first; k < inputs.size(); ++k) {
-    const ShrunkSolid s = shrink_solid(*inputs[k].surfaces, inputs[k].ground_z, epsilon, step);
+    const ShrunkSolid s = shrink(inputs[k]);
     if (!write_all(fd, encode(k, s))) break;
   }
   ::close(fd);
@@ -156,6 +156,14 @@ bool write_all(int fd, const std::vector<unsigned char>& data) {
 
 std::vector<ShrunkSolid> shrink_solids(const std::vector<SolidInput>& inputs, double epsilon,
                                        double step, double seconds) {
+  return shrink_solids(inputs, seconds, [&](const SolidInput& input) {
+    return shrink_solid(*input.surfaces, input.ground_z, epsilon, step);
+  });
+}
+
+std::vector<ShrunkSolid> shrink_solids(
+    const std::vector<SolidInput>& inputs, double seconds,
+    const std::function<ShrunkSolid(const SolidInput&)>& shrink) {
   using Clock = std::chrono::steady_clock;
   std::vector<ShrunkSolid> results(inputs.size());
   std::size_t next = 0;  // the first input without a result
@@ -174,7 +182,7 @@ std::vector<ShrunkSolid> shrink_solids(const std::vector<SolidInput>& inputs, do
     }
     if (pid == 0) {
       ::close(fds[0]);
-      child(fds[1], inputs, next, epsilon, step);
+      child(fds[1], inputs, next, shrink);
     }
     ::close(fds[1]);
     std::vector<unsigned char> buffer;
@@ -221,9 +229,12 @@ std::vector<ShrunkSolid> shrink_solids(const std::vector<SolidInput>& inputs, do
       // The child stopped on input `next`: it gives nothing, and a new child takes the rest.
       char why[96];
       if (timed_out)
-        std::snprintf(why, sizeof why, "TetGen took longer than %.0f s", seconds);
+        std::snprintf(why, sizeof why,
+                      "the 3D route took longer than %.0f s (TetGen 1.5 loops on some faces)",
+                      seconds);
       else
-        std::snprintf(why, sizeof why, "TetGen crashed on its faces");
+        std::snprintf(why, sizeof why,
+                      "the 3D route crashed on its faces (TetGen 1.5 does on some)");
       results[next++].declined = why;
     }
   }

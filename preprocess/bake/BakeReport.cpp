@@ -116,7 +116,8 @@ std::string summary_text(const BakeReport& r) {
     std::size_t declined = 0;
     for (const auto& [why, count] : r.solids_declined) declined += count;
     add(std::snprintf(line, sizeof line,
-                      "solids:      %zu buildings shrunk in 3D into %zu occluders, %zu gave none\n",
+                      "solids:      %zu buildings that are not height fields shrunk in 3D into "
+                      "%zu occluders, %zu gave none\n",
                       r.solids_shrunk, r.solid_occluders, declined));
     for (const auto& [why, count] : r.solids_declined)
       out += "  no solid:    " + std::to_string(count) + " buildings: " + why + "\n";

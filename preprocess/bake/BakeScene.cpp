@@ -88,11 +88,12 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
                                                            options_.blocks.terrain_step, shrink))
     occluders_.push_back(std::move(o));
   // Buildings that are not height fields keep, through the 3D route, what the blocks' prisms
-  // cannot hold (thesis 7.3.1); on the others it gives about what the blocks give.
+  // cannot hold (thesis 7.3.1). Height fields are left to the blocks: fused with their
+  // neighbours before they are eroded, they lose less than a building shrunk alone.
   if (options_.blocks.solid_step > 0) {
     std::vector<geometry::SolidInput> solids;
     for (const geometry::CityObject& object : city.objects)
-      if (object.occludes && !object.surfaces.empty())
+      if (object.occludes && geometry::overhangs(object.surfaces, object.ground_z))
         solids.push_back({&object.surfaces, object.ground_z});
     for (geometry::ShrunkSolid& solid :
          geometry::shrink_solids(solids, shrink, options_.blocks.solid_step, kSecondsPerSolid)) {

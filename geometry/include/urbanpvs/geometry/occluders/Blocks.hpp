@@ -37,11 +37,12 @@ struct BlockOptions {
   /// mean PVS; on a generated hilly city they took 9.7 % off it at 13 % more time.
   /// [Units: m]
   double terrain_step = 0;
-  /// Each building's solid is also shrunk in 3D (thesis 7.3.1: its outside meshed into
+  /// Buildings that are not height fields (a face looks down from above the ground: arcades,
+  /// overhangs, bridges) are also shrunk in 3D (thesis 7.3.1: the outside meshed into
   /// tetrahedra by TetGen, each enlarged by ε) into ground-standing levels this far apart
-  /// (SolidOccluders.hpp), which join the blocks' occluders: what a building holds over an
-  /// arcade's sides, under an overhang's ground floor or between stacked parts. 0, the default:
-  /// off. Needs a build with URBANPVS_TETGEN=ON (AGPL).
+  /// (SolidOccluders.hpp), which join the blocks' occluders. Height fields are left to the
+  /// blocks, which lose less (README, "Shrinking solids in 3D"). 0, the default: off. Needs a
+  /// build with URBANPVS_TETGEN=ON (AGPL).
   /// [Units: m]
   double solid_step = 0;
 };

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ struct ShrunkSolid {
   /// (the outside then reaches in everywhere); empty when it was shrunk.
   std::string declined;
 };
+
+/// Whether the building is not a height field over its footprint: a face of it looks down
+/// from above the ground (the ceiling of an arcade, the underside of an overhang or a bridge).
+/// Faces are taken as wound counter-clockwise seen from outside, as CityJSON and CityGML
+/// require; a face wound the other way only decides whether the 3D route runs.
+bool overhangs(const std::vector<Surface3>& surfaces, double ground_z);
 
 /// Whether this build has the 3D route (URBANPVS_TETGEN=ON).
 bool solid_shrinking_available();
@@ -66,5 +73,9 @@ struct SolidInput {
 /// says which); a fresh child goes on with the next one. Results are in input order.
 std::vector<ShrunkSolid> shrink_solids(const std::vector<SolidInput>& inputs, double epsilon,
                                        double step, double seconds);
+
+/// As above, with `shrink` in place of shrink_solid (the tests' crashes and endless loops).
+std::vector<ShrunkSolid> shrink_solids(const std::vector<SolidInput>& inputs, double seconds,
+                                       const std::function<ShrunkSolid(const SolidInput&)>& shrink);
 
 }  // namespace urbanpvs::geometry
