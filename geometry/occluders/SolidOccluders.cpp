@@ -264,12 +264,15 @@ Plc plc_of(const std::vector<Surface3>& surfaces, const Vec3& centre, double gro
   return plc;
 }
 
-#if URBANPVS_HAVE_TETGEN
-
 /// The exterior tetrahedra of the solid within `outer` (a box around it, relative to the
 /// PLC's centre), or a reason in `problem`.
 std::vector<std::array<Vec3, 4>> exterior_tetrahedra(const Plc& plc, const Vec3& lo, const Vec3& hi,
                                                      std::string& problem) {
+#if !URBANPVS_HAVE_TETGEN
+  (void)plc, (void)lo, (void)hi;
+  problem = "built without TetGen (URBANPVS_TETGEN=OFF)";
+  return {};
+#else
   tetgenio in, out;
   in.firstnumber = 0;
   const std::size_t n = plc.points.size();
@@ -357,9 +360,8 @@ std::vector<std::array<Vec3, 4>> exterior_tetrahedra(const Plc& plc, const Vec3&
     exterior.push_back(tet);
   }
   return exterior;
-}
-
 #endif
+}
 
 }  // namespace
 
@@ -385,11 +387,6 @@ bool solid_shrinking_available() {
 ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z, double epsilon,
                          double step) {
   ShrunkSolid result;
-#if !URBANPVS_HAVE_TETGEN
-  (void)surfaces, (void)ground_z, (void)epsilon, (void)step;
-  result.declined = "built without TetGen (URBANPVS_TETGEN=OFF)";
-  return result;
-#else
   if (!(epsilon > 0) || !(step > 0)) {
     result.declined = "ε and the level step must be positive";
     return result;
@@ -492,7 +489,6 @@ ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z,
   }
   if (tops.empty()) result.declined = "no column stands in the solid at least ε from its outside";
   return result;
-#endif
 }
 
 }  // namespace urbanpvs::geometry
