@@ -48,8 +48,12 @@ bool triangulate_face(const std::vector<Vec3>& points, const std::vector<std::ve
                                        : K::Point_2(p.x, p.y);
       const std::size_t before = cdt.number_of_vertices();
       Cdt::Vertex_handle v = cdt.insert(q);
-      if (cdt.number_of_vertices() > before) ++inserted;
-      v->info() = index;
+      if (cdt.number_of_vertices() > before) {
+        ++inserted;
+        v->info() = index;
+      } else if (v->info() != index) {
+        return false;  // two corners on one point of the plane: the face folds over itself
+      }
       handles.push_back(v);
     }
     for (std::size_t k = 0; k < handles.size(); ++k)

@@ -24,6 +24,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Raster squares of ε/2: the column test widens ε by half a square (a quarter of ε), and a
 // 30 m building takes 60 × 60 columns at the default ε.
 constexpr double kSquarePerEpsilon = 0.5;
+// A building's plan takes at most this many columns (8 MB of tops): 1 km square at ε = 1 m.
+constexpr double kMaxColumns = 4.0e6;
 // Vertices closer than this are one vertex of the solid (the input's own precision is a
 // millimetre at best).
 constexpr double kWeld = 1e-4;  // [Units: m]
@@ -408,7 +410,12 @@ ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z,
   }
   // The columns: squares over the solid's plan, each tested with a box of half-side
   // ε + square / 2 around its centre (a point's disk of radius ε lies in it).
-  const double square = kSquarePerEpsilon * epsilon;
+  // At most kMaxColumns columns: a larger plan takes larger squares (each loses half of its
+  // side more, which only ever takes columns away).
+  double square = kSquarePerEpsilon * epsilon;
+  const double width = extent.xy.max.x - extent.xy.min.x, depth = extent.xy.max.y - extent.xy.min.y;
+  while ((std::ceil(width / square) + 1) * (std::ceil(depth / square) + 1) > kMaxColumns)
+    square *= 1.25;
   const double reach = epsilon + square / 2 - kTouch;
   const Box2 plan = {{extent.xy.min.x - centre.x, extent.xy.min.y - centre.y},
                      {extent.xy.max.x - centre.x, extent.xy.max.y - centre.y}};
@@ -416,7 +423,10 @@ ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z,
   const int rows = std::max(1, static_cast<int>(std::ceil((plan.max.y - plan.min.y) / square)));
   // The meshed box reaches past every column's test box, and a metre below and above.
   const double margin = reach + 1;
-  const Vec3 lo = {plan.min.x - margin, plan.min.y - margin, extent.zmin - centre.z - 1};
+  // Down to the ground, wherever that is: air between the ground and a raised solid must be
+  // meshed to be found.
+  const Vec3 lo = {plan.min.x - margin, plan.min.y - margin,
+                   std::min(extent.zmin, ground_z) - centre.z - 1};
   const Vec3 hi = {plan.min.x + columns * square + margin, plan.min.y + rows * square + margin,
                    extent.zmax - centre.z + 1};
   const std::vector<std::array<Vec3, 4>> exterior =

@@ -7,12 +7,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <new>
+#include <string>
 
 #include "urbanpvs/geometry/occluders/SolidOccluders.hpp"
 
@@ -144,9 +148,24 @@ bool write_all(int fd, const std::vector<unsigned char>& data) {
     ::dup2(null, STDERR_FILENO);
     ::close(null);
   }
-  for (std::size_t k = first; k < inputs.size(); ++k) {
-    const ShrunkSolid s = shrink(inputs[k]);
-    if (!write_all(fd, encode(k, s))) break;
+  // Nothing may leave this function but _exit: an exception unwinding into the parent's code
+  // would run the rest of the bake (or of a test suite, or MPI_Abort) a second time.
+  try {
+    for (std::size_t k = first; k < inputs.size(); ++k) {
+      ShrunkSolid s;
+      try {
+        s = shrink(inputs[k]);
+      } catch (const std::bad_alloc&) {
+        s = {};
+        s.declined = "the 3D route ran out of memory";
+      } catch (const std::exception& e) {
+        s = {};
+        s.declined = std::string("the 3D route failed: ") + e.what();
+      }
+      if (!write_all(fd, encode(k, s))) break;
+    }
+  } catch (...) {
+    ::_exit(3);
   }
   ::close(fd);
   ::_exit(0);  // no destructors, no atexit handlers: they belong to the parent
@@ -169,7 +188,7 @@ std::vector<ShrunkSolid> shrink_solids(
   std::size_t next = 0;  // the first input without a result
   while (next < inputs.size()) {
     int fds[2];
-    if (::pipe(fds) != 0) {
+    if (::pipe2(fds, O_CLOEXEC) != 0) {
       for (; next < inputs.size(); ++next) results[next].declined = "no pipe for the TetGen child";
       break;
     }
@@ -187,21 +206,29 @@ std::vector<ShrunkSolid> shrink_solids(
     ::close(fds[1]);
     std::vector<unsigned char> buffer;
     Clock::time_point started = Clock::now();  // on the input `next`
-    bool timed_out = false;
+    bool timed_out = false, ended = false;
     for (;;) {
       const double left = seconds - std::chrono::duration<double>(Clock::now() - started).count();
-      if (left <= 0) {
-        timed_out = true;
-        break;
-      }
       pollfd p{fds[0], POLLIN, 0};
-      const int ready = ::poll(&p, 1, static_cast<int>(std::ceil(left * 1000)));
+      // What has arrived is read before the deadline is judged; a wait is at most a minute.
+      const int wait_ms =
+          left <= 0 ? 0 : static_cast<int>(std::min(60000.0, std::ceil(left * 1000)));
+      const int ready = ::poll(&p, 1, wait_ms);
       if (ready < 0 && errno == EINTR) continue;
-      if (ready == 0) continue;  // the deadline is checked above
+      if (ready == 0) {
+        if (left <= 0) {
+          timed_out = true;
+          break;
+        }
+        continue;
+      }
       unsigned char chunk[65536];
       const ssize_t n = ::read(fds[0], chunk, sizeof chunk);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;  // the child is done, or died
+      if (n <= 0) {
+        ended = n == 0;  // the child is done, or died; a read error leaves it to be killed
+        break;
+      }
       buffer.insert(buffer.end(), chunk, chunk + n);
       // Every complete record.
       std::size_t at = 0;
@@ -221,7 +248,7 @@ std::vector<ShrunkSolid> shrink_solids(
       buffer.erase(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(at));
     }
     ::close(fds[0]);
-    if (timed_out) ::kill(pid, SIGKILL);
+    if (!ended) ::kill(pid, SIGKILL);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,31 @@ void expect_conservative(const Solid& solid, const ShrunkSolid& shrunk, double g
   }
 }
 
+/// The same property at the occluders' edges and corners, where a fault would show first: each
+/// corner and edge middle moved 0.1 mm inwards (the polygon's inside is left of its edges,
+/// holes included), just under the top and just over the ground.
+void expect_conservative_at_edges(const Solid& solid, const ShrunkSolid& shrunk, double ground,
+                                  double epsilon) {
+  for (const Occluder& o : shrunk.occluders) {
+    std::vector<const Ring*> rings = {&o.shape.outer};
+    for (const Ring& h : o.shape.holes) rings.push_back(&h);
+    for (const Ring* r : rings)
+      for (std::size_t k = 0; k < r->size(); ++k) {
+        const Vec2 a = (*r)[k], b = (*r)[(k + 1) % r->size()];
+        const Vec2 along = (b - a) / glm::length(b - a), inward{-along.y, along.x};
+        for (const Vec2& p : {a + 1e-4 * (along + inward), (a + b) / 2.0 + 1e-4 * inward})
+          for (const double z : {o.top_z - 1e-6, ground + 0.02})
+            for (int n = 0; n < 16; ++n) {
+              const double angle = 2 * std::numbers::pi * n / 16;
+              const Vec3 q{p.x + epsilon * std::cos(angle), p.y + epsilon * std::sin(angle), z};
+              ASSERT_TRUE(inside(solid, q))
+                  << "occluder top " << o.top_z << " near (" << p.x << ", " << p.y << "), z " << z
+                  << ": (" << q.x << ", " << q.y << ") is outside";
+            }
+      }
+  }
+}
+
 /// The top of the occluders over p (the ground when none holds it).
 double top_at(const ShrunkSolid& s, Vec2 p, double ground) {
   double top = ground;
@@ -165,6 +191,26 @@ TEST_F(SolidOccluders, ABoxGivesItsFootprintErodedByEpsilonAndAQuarter) {
   EXPECT_NEAR(s.occluders[0].bounds.min.x, 1, 1e-9);
   EXPECT_NEAR(s.occluders[0].bounds.max.y, 11, 1e-9);
   expect_conservative(solid, s, 0, 1);
+  expect_conservative_at_edges(solid, s, 0, 1);
+}
+
+TEST_F(SolidOccluders, WallsOffTheRasterStayConservative) {
+  // The raster starts at the solid's corner: a far wall between two squares' reach, and walls
+  // at 30 degrees to it, are where an erosion too small by a tenth would show.
+  const Solid off_grid = box(0, 0, 20.45, 12.45, 0, 10);
+  const ShrunkSolid a = shrink_solid(off_grid, 0, 1, 1);
+  ASSERT_TRUE(a.declined.empty()) << a.declined;
+  expect_conservative(off_grid, a, 0, 1);
+  expect_conservative_at_edges(off_grid, a, 0, 1);
+  Solid turned = extruded_profile(
+      {{0, 0}, {12, 0}, {12, 4}, {18, 4}, {18, 0}, {30, 0}, {30, 12}, {0, 12}}, 10);
+  const double c = std::cos(std::numbers::pi / 6), s30 = std::sin(std::numbers::pi / 6);
+  for (Surface3& f : turned)
+    for (Vec3& v : f.rings.front()) v = {c * v.x - s30 * v.y, s30 * v.x + c * v.y, v.z};
+  const ShrunkSolid b = shrink_solid(turned, 0, 1, 1);
+  ASSERT_TRUE(b.declined.empty()) << b.declined;
+  expect_conservative(turned, b, 0, 1, 400);
+  expect_conservative_at_edges(turned, b, 0, 1);
 }
 
 TEST_F(SolidOccluders, AnArcadeKeepsNothingOverThePassage) {
@@ -174,6 +220,7 @@ TEST_F(SolidOccluders, AnArcadeKeepsNothingOverThePassage) {
   const ShrunkSolid s = shrink_solid(solid, 0, 1, 1);
   ASSERT_TRUE(s.declined.empty()) << s.declined;
   expect_conservative(solid, s, 0, 1);
+  expect_conservative_at_edges(solid, s, 0, 1);
   EXPECT_EQ(top_at(s, {15, 5}, 0), 0) << "the passage is open from the ground up";
   EXPECT_EQ(top_at(s, {11.5, 5}, 0), 0) << "within ε of the passage";
   EXPECT_EQ(top_at(s, {6, 5}, 0), 12);
@@ -186,6 +233,7 @@ TEST_F(SolidOccluders, AnOverhangKeepsTheColumnsUnderTheGroundFloor) {
   const ShrunkSolid s = shrink_solid(solid, 0, 1, 1);
   ASSERT_TRUE(s.declined.empty()) << s.declined;
   expect_conservative(solid, s, 0, 1);
+  expect_conservative_at_edges(solid, s, 0, 1);
   EXPECT_EQ(top_at(s, {5, 5}, 0), 12);
   EXPECT_EQ(top_at(s, {8.5, 5}, 0), 12) << "ε from the ground floor's wall, up to the top";
   EXPECT_EQ(top_at(s, {12, 5}, 0), 0) << "nothing stands under the overhang";
@@ -231,6 +279,7 @@ TEST_F(SolidOccluders, ABridgeBetweenTwoTowersIsNotGroundStanding) {
   const ShrunkSolid s = shrink_solid(welded, 0, 1, 1);
   ASSERT_TRUE(s.declined.empty()) << s.declined;
   expect_conservative(welded, s, 0, 1);
+  expect_conservative_at_edges(welded, s, 0, 1);
   EXPECT_EQ(top_at(s, {4, 4}, 0), 20);
   EXPECT_EQ(top_at(s, {24, 4}, 0), 20);
   EXPECT_EQ(top_at(s, {14, 4}, 0), 0) << "under the bridge is open";
@@ -274,12 +323,25 @@ TEST_F(SolidOccluders, AnOpenBottomIsClosedOnTheGround) {
   solid.push_back({{{{0, 0, 0.2}, {12, 0, 0.2}, {12, 8, 0.2}, {0, 8, 0.2}}}});
   const ShrunkSolid open = shrink_solid(solid, 0, 1, 1);
   ASSERT_TRUE(open.declined.empty()) << open.declined;
-  EXPECT_EQ(open.occluders.size(), shrink_solid(gabled_house(), 0, 1, 1).occluders.size());
+  const ShrunkSolid closed = shrink_solid(gabled_house(), 0, 1, 1);
+  ASSERT_EQ(open.occluders.size(), closed.occluders.size());
+  for (std::size_t k = 0; k < closed.occluders.size(); ++k) {
+    EXPECT_EQ(open.occluders[k].top_z, closed.occluders[k].top_z);
+    EXPECT_NEAR(area(open.occluders[k].shape), area(closed.occluders[k].shape), 1e-9);
+  }
   expect_conservative(gabled_house(), open, 0, 1);
+  expect_conservative_at_edges(gabled_house(), open, 0, 1);
   // Open higher up (a roof face missing) it stays open.
   Solid roofless = gabled_house();
   roofless.erase(face_where(roofless, [](const Vec3& v) { return v.z >= 6 && v.y <= 4; }));
   EXPECT_EQ(shrink_solid(roofless, 0, 1, 1).declined, "its faces close no volume");
+}
+
+TEST_F(SolidOccluders, ASolidAboveItsGroundHoldsNothingUp) {
+  // A box from 5 to 10 m over ground at 0: the air under it is outside, all the way down.
+  const ShrunkSolid s = shrink_solid(box(0, 0, 20, 12, 5, 10), 0, 1, 1);
+  EXPECT_TRUE(s.occluders.empty());
+  EXPECT_EQ(s.declined, "no column stands in the solid at least ε from its outside");
 }
 
 TEST_F(SolidOccluders, SurfacesWithAGapGiveNothing) {
@@ -320,6 +382,7 @@ TEST_F(SolidOccluders, AGabledHouseAgreesWithThe25DRoute) {
   const ShrunkSolid s = shrink_solid(solid, 0, epsilon, step);
   ASSERT_TRUE(s.declined.empty()) << s.declined;
   expect_conservative(solid, s, 0, epsilon, 120);
+  expect_conservative_at_edges(solid, s, 0, epsilon);
   // The exact 2.5D erosion of the roof (thesis 7.4) at y is 10 - |y - 4| - ε, inside the
   // footprint eroded by ε. The 3D route may lose a quarter of ε more (its squares) and a step.
   for (double x = 2; x <= 10; x += 0.7)
@@ -418,6 +481,20 @@ TEST_F(SolidOccluders, AChildProcessGivesTheSameResultsInOrder) {
       EXPECT_EQ(a.bounds.max, b.bounds.max);
     }
   }
+}
+
+TEST_F(SolidOccluders, AnExceptionInTheChildCostsThatBuildingOnly) {
+  const Solid house = gabled_house(), bad = box(0, 0, 1, 1, 0, 1);
+  const std::vector<ShrunkSolid> shrunk =
+      shrink_solids({{&house, 0}, {&bad, 0}, {&house, 0}}, 60, [&](const SolidInput& in) {
+        if (in.surfaces == &bad) throw std::runtime_error("boom");
+        return shrink_solid(*in.surfaces, in.ground_z, 1, 1);
+      });
+  ASSERT_EQ(shrunk.size(), 3u);
+  EXPECT_EQ(shrunk[0].declined, "");
+  EXPECT_EQ(shrunk[1].declined, "the 3D route failed: boom");
+  EXPECT_EQ(shrunk[2].declined, "");
+  EXPECT_FALSE(shrunk[2].occluders.empty());
 }
 
 TEST_F(SolidOccluders, ABuildingThatRunsPastTheTimeLimitGivesNothing) {
