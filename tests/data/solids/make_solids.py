@@ -62,3 +62,13 @@ city = {"type": "CityJSON", "version": "2.0",
         "CityObjects": objects, "vertices": vertices}
 with open("solids.city.json", "w") as f:
     json.dump(city, f, separators=(",", ":"))
+
+# The same city as LoD2 models often come: without GroundSurface faces.
+for o in objects.values():
+    g = o["geometry"][0]
+    sem = g["semantics"]
+    kept = [i for i, v in enumerate(sem["values"][0]) if sem["surfaces"][v]["type"] != "GroundSurface"]
+    g["boundaries"][0] = [g["boundaries"][0][i] for i in kept]
+    sem["values"][0] = [sem["values"][0][i] for i in kept]
+with open("solids_no_ground.city.json", "w") as f:
+    json.dump(city, f, separators=(",", ":"))
