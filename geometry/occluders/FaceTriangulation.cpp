@@ -30,12 +30,9 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predi
 bool triangulate_face(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& rings,
                       std::vector<std::array<int, 3>>& out) {
   if (rings.empty() || rings.front().size() < 3) return false;
-  Vec3 n{0, 0, 0};  // Newell's normal of the outer ring
   const std::vector<int>& outer = rings.front();
-  for (std::size_t k = 0; k < outer.size(); ++k)
-    n += glm::cross(points[static_cast<std::size_t>(outer[k])],
-                    points[static_cast<std::size_t>(outer[(k + 1) % outer.size()])]);
-  const Vec3 a = glm::abs(n);
+  const Vec3 a = glm::abs(newell_normal(
+      outer.size(), [&](std::size_t k) { return points[static_cast<std::size_t>(outer[k])]; }));
   const int drop = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
   Cdt cdt;
   std::size_t inserted = 0;  // distinct vertices of the rings

@@ -5,11 +5,22 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "urbanpvs/geometry/city/Vector.hpp"
 
 namespace urbanpvs::geometry {
+
+/// Newell's normal of the ring of `n` corners at(0) .. at(n - 1): its length is twice the
+/// ring's area, and it points to where the ring is seen counter-clockwise. Sound for rings that
+/// are planar only to their rounding.
+template <class At>
+Vec3 newell_normal(std::size_t n, At at) {
+  Vec3 normal{0, 0, 0};
+  for (std::size_t k = 0; k < n; ++k) normal += glm::cross(Vec3(at(k)), Vec3(at((k + 1) % n)));
+  return normal;
+}
 
 /// Appends the triangles (indices into `points`) covering the face whose outer ring and holes
 /// are `rings` (indices into `points`), triangulated in the plane its normal is largest across,

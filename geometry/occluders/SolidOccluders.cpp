@@ -105,24 +105,37 @@ struct Plc {
   std::string problem;  ///< why the surfaces cannot be meshed as given
 };
 
+using Edge = std::pair<int, int>;  ///< its two vertices, the smaller first
+
+/// Calls f with every edge of every ring of `face`.
+template <class F>
+void for_each_edge(const std::vector<std::vector<int>>& face, F f) {
+  for (const std::vector<int>& r : face)
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      const int a = r[k], b = r[(k + 1) % r.size()];
+      f(a < b ? Edge{a, b} : Edge{b, a}, a, b);
+    }
+}
+
+/// How many faces have each edge.
+std::map<Edge, int> edge_uses(const Plc& plc) {
+  std::map<Edge, int> uses;
+  for (const auto& face : plc.faces) for_each_edge(face, [&](Edge e, int, int) { ++uses[e]; });
+  return uses;
+}
+
 /// Removes, until none is left, every face with an edge that no other face has. Such a face
 /// bounds no volume: a LoD0 footprint that a reader keeps beside the solid, or a wall of a shell
 /// with a gap. Left in, it would cut through the solid, which is no PLC; taken out, a closed
 /// solid loses nothing and an open one stays open.
 void drop_open_faces(Plc& plc) {
-  auto edge = [](int a, int b) { return a < b ? std::pair{a, b} : std::pair{b, a}; };
   for (bool dropped = true; dropped;) {
     dropped = false;
-    std::map<std::pair<int, int>, int> uses;
-    for (const auto& face : plc.faces)
-      for (const std::vector<int>& r : face)
-        for (std::size_t k = 0; k < r.size(); ++k) ++uses[edge(r[k], r[(k + 1) % r.size()])];
+    std::map<Edge, int> uses = edge_uses(plc);
     std::vector<std::vector<std::vector<int>>> kept;
     for (auto& face : plc.faces) {
       bool open = false;
-      for (const std::vector<int>& r : face)
-        for (std::size_t k = 0; k < r.size() && !open; ++k)
-          open = uses[edge(r[k], r[(k + 1) % r.size()])] < 2;
+      for_each_edge(face, [&](Edge e, int, int) { open = open || uses[e] < 2; });
       if (open)
         dropped = true;
       else
@@ -169,29 +182,22 @@ void split_at_t_junctions(Plc& plc) {
 /// (the Delft sample derives its footprints from the roofs), and the occluders stand on the
 /// ground anyway (thesis 4.2.1), so closing the solid there assumes nothing they do not.
 void cap_ground_loops(Plc& plc, double ground) {
-  auto edge = [](int a, int b) { return a < b ? std::pair{a, b} : std::pair{b, a}; };
-  std::map<std::pair<int, int>, int> uses;
-  for (const auto& face : plc.faces)
-    for (const std::vector<int>& r : face)
-      for (std::size_t k = 0; k < r.size(); ++k) ++uses[edge(r[k], r[(k + 1) % r.size()])];
+  std::map<Edge, int> uses = edge_uses(plc);
   // A face that shares no edge with any other stands alone (a LoD0 footprint kept beside the
   // solid): its outline is no opening of the shell, and it goes before any loop is capped.
   std::erase_if(plc.faces, [&](const std::vector<std::vector<int>>& face) {
-    for (const std::vector<int>& r : face)
-      for (std::size_t k = 0; k < r.size(); ++k)
-        if (uses[edge(r[k], r[(k + 1) % r.size()])] > 1) return false;
-    for (const std::vector<int>& r : face)
-      for (std::size_t k = 0; k < r.size(); ++k) --uses[edge(r[k], r[(k + 1) % r.size()])];
-    return true;
+    bool shared = false;
+    for_each_edge(face, [&](Edge e, int, int) { shared = shared || uses[e] > 1; });
+    if (!shared) for_each_edge(face, [&](Edge e, int, int) { --uses[e]; });
+    return !shared;
   });
   std::map<int, int> next;  // the open edges, as their faces run
+  bool branching = false;
   for (const auto& face : plc.faces)
-    for (const std::vector<int>& r : face)
-      for (std::size_t k = 0; k < r.size(); ++k) {
-        const int a = r[k], b = r[(k + 1) % r.size()];
-        if (uses[edge(a, b)] != 1) continue;
-        if (!next.emplace(a, b).second) return;  // two open edges leave a: no loop to trust
-      }
+    for_each_edge(face, [&](Edge e, int a, int b) {
+      if (uses[e] == 1 && !next.emplace(a, b).second) branching = true;
+    });
+  if (branching) return;  // two open edges leave one vertex: no loop to trust
   while (!next.empty()) {
     std::vector<int> loop;
     int at = next.begin()->first;
@@ -371,12 +377,10 @@ bool overhangs(const std::vector<Surface3>& surfaces, double ground_z) {
   for (const Surface3& s : surfaces) {
     if (s.rings.empty() || s.rings.front().size() < 3) continue;
     const std::vector<Vec3>& r = s.rings.front();
-    Vec3 n{0, 0, 0};  // Newell's normal
-    double low = r.front().z;
-    for (std::size_t k = 0; k < r.size(); ++k) {
-      n += glm::cross(r[k], r[(k + 1) % r.size()]);
-      low = std::min(low, r[k].z);
-    }
+    const Vec3 n = newell_normal(r.size(), [&](std::size_t k) { return r[k]; });
+    const double low = std::min_element(r.begin(), r.end(), [](const Vec3& a, const Vec3& b) {
+                         return a.z < b.z;
+                       })->z;
     if (n.z < -kFacesDown * glm::length(n) && low > ground_z + kCapRise) return true;
   }
   return false;
