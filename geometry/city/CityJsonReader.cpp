@@ -16,6 +16,7 @@
 #include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/city/RoofPrisms.hpp"
 #include "urbanpvs/geometry/city/SteppedRoof.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
 
@@ -748,8 +749,12 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
     }
     lost = lost || footprint.empty();
     std::vector<RoofFace> roof;
-    if (objs.options.roof_step && !occluder.empty()) roof = roof_faces(*r, objs.file.file());
-    if (!roof.empty()) {
+    if ((objs.options.roof_step || objs.options.sloped_roofs) && !occluder.empty())
+      roof = roof_faces(*r, objs.file.file());
+    if (objs.options.sloped_roofs && !roof.empty())
+      for (RoofPrism& p : roof_prisms(occluder, r->zmin, roof, r->top))
+        o.roof_prisms.push_back(std::move(p));
+    if (!roof.empty() && objs.options.roof_step) {
       for (OccluderPrism& p : stepped_occluders(occluder, r->zmin, roof, *objs.options.roof_step))
         o.occluders.push_back(std::move(p));
     } else if (r->top > r->zmin) {

@@ -54,6 +54,7 @@ std::string report_json(const BakeReport& r) {
                  {"occluders", r.occluders},
                  {"terrain_occluders", r.terrain_occluders},
                  {"solid_occluders", r.solid_occluders},
+                 {"roof_plane_occluders", r.roof_plane_occluders},
                  {"solids_shrunk", r.solids_shrunk},
                  {"solids_declined", r.solids_declined},
                  {"cells", r.cells},
@@ -108,8 +109,10 @@ std::string summary_text(const BakeReport& r) {
                       "ranks:       %zu (cells %s; most over mean %.2f; peak per rank %s)\n",
                       r.ranks.size(), shares.c_str(), r.load_balance(), mib(peak).c_str()));
   }
-  const std::string terrain =
+  std::string terrain =
       r.terrain_occluders > 0 ? ", " + std::to_string(r.terrain_occluders) + " of the terrain" : "";
+  if (r.roof_plane_occluders > 0)
+    terrain += ", " + std::to_string(r.roof_plane_occluders) + " under sloped roof faces";
   add(std::snprintf(line, sizeof line, "objects:     %zu (%zu blocks, %zu occluders%s)\n",
                     r.objects, r.blocks, r.occluders, terrain.c_str()));
   if (r.solid_occluders > 0 || !r.solids_declined.empty()) {

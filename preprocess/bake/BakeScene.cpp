@@ -8,6 +8,7 @@
 
 #include "urbanpvs/geometry/city/ObjectOutline.hpp"
 #include "urbanpvs/geometry/occluders/InwardSimplification.hpp"
+#include "urbanpvs/geometry/occluders/RoofPlaneOccluders.hpp"
 #include "urbanpvs/geometry/occluders/SolidOccluders.hpp"
 #include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
@@ -41,7 +42,7 @@ std::vector<geometry::Box3> occluder_boxes(const std::vector<geometry::Occluder>
     geometry::Box3 b;
     b.xy = o.bounds;
     b.zmin = -std::numeric_limits<double>::infinity();  // prisms stand on the ground
-    b.zmax = o.top_z;
+    b.zmax = o.top_high();
     out.push_back(b);
   }
   return out;
@@ -87,6 +88,11 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   for (geometry::Occluder& o : geometry::terrain_occluders(city.terrain, city.bounds().xy,
                                                            options_.blocks.terrain_step, shrink))
     occluders_.push_back(std::move(o));
+  // Roof faces above the blocks' levels, with their slopes (thesis 4.2.1, 7.4): not fused, as a
+  // face's plane holds only over its own ground.
+  for (geometry::Occluder& o :
+       geometry::roof_plane_occluders(city.objects, blocks_, shrink, options_.blocks))
+    occluders_.push_back(std::move(o));
   // Buildings that are not height fields keep, through the 3D route, what the blocks' prisms
   // cannot hold (thesis 7.3.1). Height fields are left to the blocks: fused with their
   // neighbours before they are eroded, they lose less than a building shrunk alone.
@@ -113,7 +119,7 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   zlo_ = all.zmin - 1.0;
   for (const geometry::ViewCell& c : mesh_.cells) zlo_ = std::min(zlo_, c.zmin - 1.0);
   zhi_ = all.zmax + 1000.0;
-  for (const geometry::Occluder& o : occluders_) zhi_ = std::max(zhi_, o.top_z + 1000.0);
+  for (const geometry::Occluder& o : occluders_) zhi_ = std::max(zhi_, o.top_high() + 1000.0);
   object_index_ = BoxQuadtree(object_boxes(city.objects));
   object_outlines_.reserve(city.objects.size());
   for (const geometry::CityObject& o : city.objects)
@@ -124,9 +130,12 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   if (const double t = options_.far_outline_tolerance; t > 0) {
     far_outline_distance_ = BakeOptions::kFarOutlineRatio * t;
     far_occluders_.reserve(occluders_.size());
-    for (const geometry::Occluder& o : occluders_)
-      far_occluders_.push_back({o.block, o.top_z, geometry::simplified_inward(o.shape, t),
-                                o.bounds});  // the outline's bounds still hold the far one
+    for (const geometry::Occluder& o : occluders_) {
+      // The same top (a part of an occluder under the same plane hides no more than the whole);
+      // the outline's bounds still hold the far one.
+      geometry::Occluder& far = far_occluders_.emplace_back(o);
+      far.shape = geometry::simplified_inward(o.shape, t);
+    }
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "urbanpvs/geometry/cells/ViewCellRegion.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/occluders/RoofPlaneOccluders.hpp"
 #include "urbanpvs/geometry/occluders/SolidOccluders.hpp"
 #include "urbanpvs/geometry/occluders/TerrainOccluders.hpp"
 #include "urbanpvs/preprocess/bake/BakeFingerprint.hpp"
@@ -280,6 +281,9 @@ int Run::execute() {
   report_.terrain_occluders = static_cast<std::size_t>(std::count_if(
       scene.occluders().begin(), scene.occluders().end(),
       [](const geometry::Occluder& o) { return o.block == geometry::kTerrainBlock; }));
+  report_.roof_plane_occluders = static_cast<std::size_t>(std::count_if(
+      scene.occluders().begin(), scene.occluders().end(),
+      [](const geometry::Occluder& o) { return o.block == geometry::kRoofPlaneBlock; }));
   report_.solid_occluders = static_cast<std::size_t>(
       std::count_if(scene.occluders().begin(), scene.occluders().end(),
                     [](const geometry::Occluder& o) { return o.block == geometry::kSolidBlock; }));

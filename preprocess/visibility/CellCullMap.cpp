@@ -13,10 +13,8 @@ void render_sample(const Vec3& sample, std::span<const geometry::Occluder* const
                    CullMap& map, CullMapStats* stats) {
   const Box2 clip = map.grid().bounds().grown(map.grid().pixel);
   for (const geometry::Occluder* o : occluders)
-    geometry::for_each_edge(o->shape, [&](Vec2 a, Vec2 b) {
-      auto shadow = occluder_shadow(sample, a, b, o->top_z, clip);
-      if (!shadow) return;
-      const std::size_t px = rasterize_max(*shadow, map);
+    for_each_shadow(sample, *o, clip, [&](const OccluderShadow& shadow) {
+      const std::size_t px = rasterize_max(shadow, map);
       if (stats) ++stats->shadows, stats->pixels_written += px;
     });
 }
@@ -50,7 +48,7 @@ void render_sample_front_to_back(const Vec3& sample,
   for (const auto& [d2, o] : order) {
     geometry::Box3 box;
     box.xy = o->bounds.grown(margin);
-    box.zmin = box.zmax = o->top_z;
+    box.zmin = box.zmax = o->top_high();
     if (hidden_by(map, box)) {
       if (stats) ++stats->occluders_skipped;
       continue;
@@ -72,7 +70,7 @@ void render_sample_unhidden(const Vec3& sample,
   for (const auto& [d, o] : order) {
     geometry::Box3 box;
     box.xy = o->bounds;
-    box.zmin = box.zmax = o->top_z;
+    box.zmin = box.zmax = o->top_high();
     if (horizon.hides(box)) {
       if (stats) ++stats->occluders_skipped;
       continue;

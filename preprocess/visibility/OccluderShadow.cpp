@@ -44,18 +44,23 @@ ShadowPolygon clip_to_box(ShadowPolygon poly, const Box2& box) {
 
 }  // namespace
 
-std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b, double top,
+std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, double top_a, Vec2 b,
+                                              double top_b, double top_under_sample,
                                               const Box2& clip) {
-  if (!casts_shadow(a, b, sample, top)) return std::nullopt;
+  if (!casts_shadow(a, b, sample, top_under_sample)) return std::nullopt;
   const Vec2 v{sample.x, sample.y};
-  // The plane through V and the edge's top: normal n = (B - A) x (V - A).
+  // The plane through V and the edge's top, A' = (a, top_a) to B' = (b, top_b): normal
+  // n = (B' - A') x (V - A'). A flat edge takes the shorter form, so that its plane is the
+  // same to the last bit as before sloped edges existed.
   const Vec2 d = b - a, w = v - a;
-  const double dz = sample.z - top;
-  const double nx = d.y * dz, ny = -d.x * dz, nz = cross(d, w);
+  const double dz = sample.z - top_a, rise = top_b - top_a;
+  const double nx = rise == 0 ? d.y * dz : d.y * dz - rise * w.y;
+  const double ny = rise == 0 ? -d.x * dz : rise * w.x - d.x * dz;
+  const double nz = cross(d, w);
   OccluderShadow s;
   s.a = -nx / nz;
   s.b = -ny / nz;
-  s.c = top + (nx * a.x + ny * a.y) / nz;
+  s.c = top_a + (nx * a.x + ny * a.y) / nz;
 
   // The wedge behind the edge out to radius R beyond every corner of the clip box. Its far side
   // must not be the chord between the rays through a and b: seen at a grazing angle (a street

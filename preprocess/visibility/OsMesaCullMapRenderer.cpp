@@ -145,9 +145,8 @@ CullMap OsMesaCullMapRenderer::cell_cull_map(const CullMapGrid& grid, std::span<
   auto build = [&](const Vec3& sample) {
     triangles.clear();
     for (const geometry::Occluder* o : occluders)
-      geometry::for_each_edge(o->shape, [&](Vec2 a, Vec2 b) {
-        auto s = occluder_shadow(sample, a, b, o->top_z, clip);
-        if (!s) return;
+      for_each_shadow(sample, *o, clip, [&](const OccluderShadow& shadow) {
+        const OccluderShadow* s = &shadow;
         if (stats) ++stats->shadows;
         // depth(i + 0.5, j + 0.5) = (height(origin + k·(i + 0.5, j + 0.5)) - zlo) / range
         const float pa = static_cast<float>(s->a * grid.pixel / range);

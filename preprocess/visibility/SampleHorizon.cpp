@@ -62,6 +62,7 @@ SampleHorizon::SampleHorizon()
       pending_(kBins),
       pending_count_(kBins),
       reach_(kBins),
+      low_(kBins),
       sector_mark_(kBins, 0) {}
 
 void SampleHorizon::reset(const Vec3& sample) {
@@ -274,22 +275,28 @@ bool SampleHorizon::hides_point(Vec2 p, double top) const {
 }
 
 void SampleHorizon::add(const geometry::Occluder& occluder) {
-  if (!(occluder.top_z > sample_.z)) return;  // walls below the eye hide nothing rising
-  add_ring(occluder.shape.outer, occluder.top_z, false);
-  for (const geometry::Ring& h : occluder.shape.holes) add_ring(h, occluder.top_z, true);
+  if (!(occluder.top_high() > sample_.z)) return;  // walls below the eye hide nothing rising
+  add_ring(occluder.shape.outer, occluder, false);
+  for (const geometry::Ring& h : occluder.shape.holes) add_ring(h, occluder, true);
 }
 
 // Closes sectors t0..t1 (unwrapped numbers) with the facing walls among edges k0..k1 of `ring`
 // (indices mod n; angle(k) is vertex k's unwrapped direction). Each sector gets the farthest
 // distance at which one of those walls crosses it: convex in the direction over a wall, so the
-// largest value over a sector's part of a wall lies at one of the part's ends. Sectors marked
-// with `skip_mark` are left alone; closed ones are marked with `mark`.
+// largest value over a sector's part of a wall lies at one of the part's ends. Under a sloped
+// top (thesis 4.2.1) the sector also takes the lowest point of those walls' tops within it, at
+// an end of each part (the top is linear along a wall): a ray crosses a wall no lower than that
+// and no farther than the reach, so the slope (lowest − eye) / reach stays below every ray's,
+// and a sector whose lowest top is not above the eye gets nothing.
+// Sectors marked with `skip_mark` are left alone; closed ones are marked with `mark`.
 template <class Angle>
 void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, std::size_t k1,
-                                  Angle&& angle, long long t0, long long t1, double top,
-                                  std::uint32_t skip_mark, std::uint32_t mark) {
+                                  Angle&& angle, long long t0, long long t1,
+                                  const geometry::Occluder& occluder, std::uint32_t skip_mark,
+                                  std::uint32_t mark) {
   const std::size_t n = ring.size();
   const Vec2 s{sample_.x, sample_.y};
+  const bool sloped = occluder.sloped();
   touched_.clear();
   for (std::size_t k = k0; k <= k1; ++k) {
     const Vec2 p = ring[k % n], q = ring[(k + 1) % n];
@@ -310,6 +317,12 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     if (u1 < u0) continue;
     // Sector t spans [from, to] of this wall; `to` of one sector is `from` of the next.
     double at_from = static_cast<double>(u0) * kSector < a_lo ? at_lo : along(border(u0));
+    // A sloped top along the wall: at its ends, and where a border crosses it.
+    const double top_lo = sloped ? occluder.top_at(p_first ? p : q) : 0;
+    const double top_hi = sloped ? occluder.top_at(p_first ? q : p) : 0;
+    double top_from = !sloped || static_cast<double>(u0) * kSector < a_lo
+                          ? top_lo
+                          : occluder.top_at(s + at_from * border(u0));
     auto b = static_cast<std::size_t>(bin_of(u0));
     // The borders u0 + 1 .. u1 + 1, all at once.
     const int first = bin_of(u0 + 1);
@@ -322,25 +335,37 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
         crossing_[static_cast<std::size_t>(i)] = along(border(u0 + 1 + i));
     }
     for (long long t = u0; t <= u1; ++t) {
-      const double at_to = static_cast<double>(t + 1) * kSector > a_hi
-                               ? at_hi
-                               : crossing_[static_cast<std::size_t>(t - u0)];
+      const bool at_end = static_cast<double>(t + 1) * kSector > a_hi;
+      const double at_to = at_end ? at_hi : crossing_[static_cast<std::size_t>(t - u0)];
+      // The wall's lowest point within the sector: its top is linear along the wall.
+      double top_to = 0, low = 0;
+      if (sloped) {
+        top_to = at_end ? top_hi : occluder.top_at(s + at_to * border(t + 1));
+        low = std::min(top_from, top_to);
+      }
       if (sector_mark_[b] != skip_mark) {
-        if (reach_[b] == 0) touched_.push_back(static_cast<int>(b));
+        if (reach_[b] == 0) {
+          touched_.push_back(static_cast<int>(b));
+          if (sloped) low_[b] = low;
+        }
         reach_[b] = std::max({reach_[b], at_from, at_to, 1e-300});
+        if (sloped) low_[b] = std::min(low_[b], low);
       }
       at_from = at_to;
+      top_from = top_to;
       b = b + 1 == static_cast<std::size_t>(kBins) ? 0 : b + 1;
     }
   }
-  const double rise = top - sample_.z;
   for (int b : touched_) {
+    const auto i = static_cast<std::size_t>(b);
     // Slightly farther than computed: the divisions and square roots above are a few ulps
     // off.
-    const double r = reach_[static_cast<std::size_t>(b)] * (1 + 1e-9) + 1e-9;
-    reach_[static_cast<std::size_t>(b)] = 0;
-    sector_mark_[static_cast<std::size_t>(b)] = mark;
-    insert(b, Entry{r, rise / r});
+    const double r = reach_[i] * (1 + 1e-9) + 1e-9;
+    // A crossing's top comes from a computed point a few ulps off the wall: 0.1 µm lower.
+    const double rise = (sloped ? low_[i] - 1e-7 : occluder.top_z) - sample_.z;
+    reach_[i] = 0;
+    sector_mark_[i] = mark;
+    if (rise > 0) insert(b, Entry{r, rise / r});
   }
 }
 
@@ -377,7 +402,8 @@ bool inner_sectors(double lo, double hi, bool around, long long* t0, long long* 
 //    for every sector this would be loose where a ray leaves and re-enters a concave block.
 // A sample inside a ring (a courtyard: inside a hole) sees every ray leave through a facing wall
 // of the hole: one run around it.
-void SampleHorizon::add_ring(const geometry::Ring& ring, double top, bool hole) {
+void SampleHorizon::add_ring(const geometry::Ring& ring, const geometry::Occluder& occluder,
+                             bool hole) {
   const std::size_t n = ring.size();
   if (n < 3) return;
   const Vec2 s{sample_.x, sample_.y};
@@ -424,14 +450,14 @@ void SampleHorizon::add_ring(const geometry::Ring& ring, double top, bool hole) 
     const bool full = around && k - first == n;
     long long t0, t1;
     if (inner_sectors(std::min(a, b), std::max(a, b), full, &t0, &t1))
-      close_sectors(ring, first, k - 1, angle, t0, t1, top, kNoMark, by_run);
+      close_sectors(ring, first, k - 1, angle, t0, t1, occluder, kNoMark, by_run);
   }
   // The run around the sample closed everything; a single run spans the ring's whole extent.
   if (around || runs <= 1) return;
   const auto [lo, hi] = std::minmax_element(angle_.begin(), angle_.end());
   long long t0, t1;
   if (inner_sectors(*lo, *hi, false, &t0, &t1))
-    close_sectors(ring, 0, n - 1, angle, t0, t1, top, by_run, by_run);
+    close_sectors(ring, 0, n - 1, angle, t0, t1, occluder, by_run, by_run);
 }
 
 }  // namespace urbanpvs::preprocess

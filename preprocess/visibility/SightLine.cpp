@@ -27,15 +27,18 @@ bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tre
         if (blocked) return;
         const geometry::Occluder& o = occluders[item];
         double low;
-        if (!lowest_in(o.bounds, &low) || !(o.top_z - margin > low)) return;
+        if (!lowest_in(o.bounds, &low) || !(o.top_high() - margin > low)) return;
+        const double under = o.top_at(s);
         geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
-          if (blocked || !casts_shadow(a, b, from, o.top_z)) return;
+          if (blocked || !casts_shadow(a, b, from, under)) return;
           const Vec2 e = b - a;
           const double den = geometry::cross(d, e);
           if (den == 0) return;
           const double t = geometry::cross(a - s, e) / den;  // along the sight line
           const double u = geometry::cross(a - s, d) / den;  // along the wall
-          if (t > 0 && t < 1 && u >= 0 && u <= 1 && from.z + t * dz < o.top_z - margin)
+          // The wall's top where the line crosses it: linear along a sloped edge (thesis
+          // 4.2.1), so exact for any wall.
+          if (t > 0 && t < 1 && u >= 0 && u <= 1 && from.z + t * dz < o.top_at(a + u * e) - margin)
             blocked = true;
         });
       });

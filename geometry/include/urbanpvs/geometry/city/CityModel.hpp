@@ -35,6 +35,18 @@ struct OccluderPrism {
   double top_z = 0;
 };
 
+/// A volume certainly inside a building under one of its roof faces: the prism over `footprint`
+/// from `ground_z` up to the plane z(p) = z0 + slope·(p − origin), which lies nowhere above the
+/// face (thesis 7.1). Read with ReadOptions::sloped_roofs (RoofPrisms.hpp); its top edges cast
+/// the shadows of sloped edges (thesis 4.2.1) once shrunk (RoofPlaneOccluders.hpp).
+struct RoofPrism {
+  Polygon footprint;
+  double ground_z = 0;
+  Vec2 origin{0, 0};
+  double z0 = 0;
+  Vec2 slope{0, 0};  ///< 0: a flat roof face above the part's lowest roof point
+};
+
 /// A triangle in absolute coordinates (terrain).
 struct Triangle3 {
   std::array<Vec3, 3> v;
@@ -62,6 +74,9 @@ struct CityObject {
   double ground_z = 0;                   ///< lowest point of the object
   Box3 bbox;                             ///< of all its geometry, parts above the ground included
   std::vector<OccluderPrism> occluders;  ///< may be empty (e.g. only raised parts)
+  /// With ReadOptions::sloped_roofs: the prisms under the roof faces that rise above the parts'
+  /// occluders (CityJSON only).
+  std::vector<RoofPrism> roof_prisms;
   /// The input's own surfaces of this object: CityJSON, every surface of the chosen LoD of the
   /// building, its parts and installations; GeoJSON, the walls, top and bottom of each part's
   /// prism from its base to its full height (the roof's top).

@@ -54,6 +54,11 @@ struct ReadOptions {
   /// roof's eaves and its top). Unset: one prism per part, cut at the lowest point of its
   /// roof. [Units: m]
   std::optional<double> roof_step;
+  /// CityJSON parts: each roof face that rises above the part's occluder adds the prism under
+  /// its own plane (RoofPrisms.hpp), whose sloped top edges cast their own shadows (thesis
+  /// 4.2.1): a gabled roof occludes up to near its ridge with four walls per face, not with a
+  /// level every roof_step.
+  bool sloped_roofs = false;
 };
 
 /// Reads every file into one city (all files must share one coordinate reference system).

@@ -48,7 +48,8 @@ struct BakeReport {
   /// Each rank's share in an MPI job (DistributedBake.hpp); empty for a run of one process.
   std::vector<RankShare> ranks;
   std::size_t objects = 0, blocks = 0, occluders = 0, cells = 0;
-  std::size_t terrain_occluders = 0;  ///< of `occluders`, the terrain's levels (--terrain-step)
+  std::size_t terrain_occluders = 0;     ///< of `occluders`, the terrain's levels (--terrain-step)
+  std::size_t roof_plane_occluders = 0;  ///< of `occluders`, under roof faces (--sloped-roofs)
   /// Of `occluders`, the levels of buildings shrunk in 3D (--solid-step); the buildings that
   /// gave some, and why the others gave none (reason -> buildings).
   std::size_t solid_occluders = 0, solids_shrunk = 0;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "urbanpvs/geometry/city/Polygon2.hpp"
+#include "urbanpvs/geometry/occluders/Occluder.hpp"
 
 namespace urbanpvs::preprocess {
 
@@ -62,20 +63,42 @@ inline bool faces(Vec2 a, Vec2 b, const Vec3& sample) {
   return geometry::cross(b - a, Vec2{sample.x, sample.y} - a) < 0;
 }
 
-/// Whether the wall over a→b of an occluder with top `top` casts a shadow from `sample`: when
-/// it faces the sample, and every wall when the sample is above the top. A line from above
-/// that comes down through the top leaves the occluder through a wall facing away, below its
-/// top, and nothing of a front wall's shadow says so: a low building seen from a hill, a
-/// terrain level the cell stands on (TerrainOccluders.hpp). The maps and the exact sight lines
-/// both use this rule, so they judge alike.
-inline bool casts_shadow(Vec2 a, Vec2 b, const Vec3& sample, double top) {
-  return sample.z > top || faces(a, b, sample);
+/// Whether the wall over a→b of an occluder casts a shadow from `sample`: when it faces the
+/// sample, and every wall when the sample is above the occluder's top (`top_under_sample`: the
+/// height of the top's plane at the sample's x, y). A line from above that comes down through
+/// the top leaves the occluder through a wall facing away, below its top, and nothing of a
+/// front wall's shadow says so: a low building seen from a hill, a terrain level the cell stands
+/// on (TerrainOccluders.hpp). From below the plane no line enters through the top (a line
+/// crosses a plane once), so there the facing walls' shadows hold every other wall's. The maps
+/// and the exact sight lines both use this rule, so they judge alike.
+inline bool casts_shadow(Vec2 a, Vec2 b, const Vec3& sample, double top_under_sample) {
+  return sample.z > top_under_sample || faces(a, b, sample);
 }
 
-/// The shadow of the wall over edge a→b with top height `top`, seen from `sample`, clipped by us
-/// to `clip` (never left to a rasterizer's clipping, which is not exact at the border). Nothing
-/// when the wall casts no shadow from the sample (casts_shadow) or the wedge misses `clip`.
-std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b, double top,
+/// The shadow of the wall over edge a→b whose top runs from height `top_a` over a to `top_b`
+/// over b, seen from `sample`: the wedge behind the edge, below the plane through the sample and
+/// the top edge (thesis 4.2.1; for a sloped edge the plane tilts with it). Clipped by us to
+/// `clip` (never left to a rasterizer's clipping, which is not exact at the border). Nothing
+/// when the wall casts no shadow from the sample (casts_shadow, given `top_under_sample`) or the
+/// wedge misses `clip`.
+std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, double top_a, Vec2 b,
+                                              double top_b, double top_under_sample,
                                               const Box2& clip);
+
+/// The shadow of a wall with a flat top at `top`.
+inline std::optional<OccluderShadow> occluder_shadow(const Vec3& sample, Vec2 a, Vec2 b, double top,
+                                                     const Box2& clip) {
+  return occluder_shadow(sample, a, top, b, top, top, clip);
+}
+
+/// Calls `f(shadow)` for the shadow of every wall of `o` that casts one from `sample` within
+/// `clip`: what one sample's cull map holds of one occluder, in whichever renderer.
+template <class F>
+void for_each_shadow(const Vec3& sample, const geometry::Occluder& o, const Box2& clip, F&& f) {
+  const double under = o.top_at({sample.x, sample.y});
+  geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
+    if (auto s = occluder_shadow(sample, a, o.top_at(a), b, o.top_at(b), under, clip)) f(*s);
+  });
+}
 
 }  // namespace urbanpvs::preprocess

@@ -79,11 +79,11 @@ class SampleHorizon {
   BoxView view(const geometry::Box3& box) const;
   bool covers(const BoxView& v) const;  ///< hides(), given the walls passed as they stand
 
-  void add_ring(const geometry::Ring& ring, double top, bool hole);
+  void add_ring(const geometry::Ring& ring, const geometry::Occluder& occluder, bool hole);
   template <class Angle>
   void close_sectors(const geometry::Ring& ring, std::size_t k0, std::size_t k1, Angle&& angle,
-                     long long t0, long long t1, double top, std::uint32_t skip_mark,
-                     std::uint32_t mark);
+                     long long t0, long long t1, const geometry::Occluder& occluder,
+                     std::uint32_t skip_mark, std::uint32_t mark);
   void insert(int bin, Entry e);
   void settle(int bin, double distance);
   double slope_at(int bin, double distance) const;  ///< of the walls passed at `distance`
@@ -94,6 +94,7 @@ class SampleHorizon {
   std::vector<std::array<Entry, kSlots>> pending_;  ///< per sector: walls not yet passed
   std::vector<std::uint8_t> pending_count_;
   std::vector<double> angle_, reach_;    ///< scratch of add_ring (reach_ per sector, kept 0)
+  std::vector<double> low_;              ///< scratch of add_ring: per sector, its lowest wall end
   std::vector<double> vertex_distance_;  ///< scratch of add_ring: each ring vertex's distance
   std::vector<double> crossing_;         ///< scratch of close_sectors: a wall's border crossings
   std::vector<int> touched_;
