@@ -481,6 +481,29 @@ solids)
   no_temporaries
   ;;
 
+sloped)
+  # --sloped-roofs on a generated LoD2 city: the roof faces become occluders with sloped tops
+  # (the summary and the report count them, the file's metadata names the setting), the PVSs
+  # shrink against the same city without them, and the validator finds no miss.
+  "$citygen" --size-km2 0.1 --seed 8 --roofs lod2 -q -o lod2.city.json
+  "$preprocess" lod2.city.json -o eaves.pvs --quiet || fail "the LoD2 city did not bake"
+  "$preprocess" lod2.city.json -o sloped.pvs --sloped-roofs --report report.json > bake.txt \
+    2> bake.err || fail "--sloped-roofs: $(cat bake.err)"
+  grep -q '^objects: .*, [1-9][0-9]* under sloped roof faces)' bake.err \
+    || fail "no roof face occluders: $(grep '^objects' bake.err)"
+  grep -q '"roof_plane_occluders": *[1-9]' report.json || fail "the report counts no roof faces"
+  "$inspect" sloped.pvs > summary.txt
+  grep -q 'property:    sloped_roofs = true' summary.txt || fail "the setting is not in the file"
+  mean_eaves=$("$inspect" eaves.pvs | sed -n 's/^pvs size: .*mean \([0-9.]*\),.*/\1/p')
+  mean_sloped=$(sed -n 's/^pvs size: .*mean \([0-9.]*\),.*/\1/p' summary.txt)
+  awk -v a="$mean_sloped" -v b="$mean_eaves" 'BEGIN { exit !(a < b) }' \
+    || fail "mean PVS with sloped roofs $mean_sloped, without $mean_eaves"
+  "$validate" lod2.city.json sloped.pvs --viewpoints 200 --seed 5 > validate.txt \
+    || fail "validation failed: $(cat validate.txt)"
+  grep -q 'misses: 0' validate.txt || fail "misses: $(cat validate.txt)"
+  no_temporaries
+  ;;
+
 *)
   fail "unknown case $case_name"
   ;;
