@@ -19,10 +19,6 @@ Box2 plan_bounds(const RoofFace& f) {
   return b;
 }
 
-bool overlap(const Box2& a, const Box2& b) {
-  return a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y;
-}
-
 }  // namespace
 
 std::vector<RoofPrism> roof_prisms(const std::vector<Polygon>& base, double ground_z,
@@ -48,7 +44,7 @@ std::vector<RoofPrism> roof_prisms(const std::vector<Polygon>& base, double grou
     // top somewhere. Neighbours that only share an edge with it take nothing away.
     std::vector<Polygon> lower;
     for (std::size_t j = 0; j < faces.size(); ++j)
-      if (j != i && faces[j].low < top && overlap(boxes[i], boxes[j]))
+      if (j != i && faces[j].low < top && boxes[i].overlaps(boxes[j]))
         lower.insert(lower.end(), faces[j].plan.begin(), faces[j].plan.end());
     std::vector<Polygon> region = intersect_polygons(f.plan, base);
     if (!lower.empty() && !region.empty()) region = subtract_polygons(region, lower);

@@ -15,13 +15,11 @@ namespace {
 /// A face's plane lowered by ε times its slope, and the ground near the face.
 struct LoweredFace {
   const RoofPrism* prism = nullptr;
-  double z0 = 0;              ///< L'(origin)
+  double drop = 0;            ///< ε times the plane's steepest slope
   std::vector<Polygon> near;  ///< a mitred offset of the prism's ground by ε: holds its ε-disks
   Box2 box;                   ///< of `near`
 
-  double at(Vec2 p) const {
-    return z0 + prism->slope.x * (p.x - prism->origin.x) + prism->slope.y * (p.y - prism->origin.y);
-  }
+  double at(Vec2 p) const { return prism->top_at(p) - drop; }
 };
 
 /// The part of `box` where face `a`'s lowered plane lies above `b`'s: a half-plane (their
@@ -65,7 +63,7 @@ void shrink_block_roofs(const std::vector<const RoofPrism*>& prisms, double epsi
   for (const RoofPrism* p : prisms) {
     LoweredFace f;
     f.prism = p;
-    f.z0 = p->z0 - epsilon * std::hypot(p->slope.x, p->slope.y);
+    f.drop = epsilon * std::hypot(p->slope.x, p->slope.y);
     // Simplified, the ground may lose up to the tolerance; a sliver closed above stands for
     // the face within half the gap: grown by as much more, `near` holds every disk of radius
     // ε around the ground and its slivers.
@@ -94,7 +92,7 @@ void shrink_block_roofs(const std::vector<const RoofPrism*>& prisms, double epsi
       if (!polygon_defect(piece).empty()) continue;
       Occluder o;
       o.block = kRoofPlaneBlock;
-      o.top_z = f.z0;
+      o.top_z = f.prism->z0 - f.drop;
       o.slope = f.prism->slope;
       o.origin = f.prism->origin;
       o.bounds = bounds(piece);

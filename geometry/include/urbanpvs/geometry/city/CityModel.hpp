@@ -45,6 +45,10 @@ struct RoofPrism {
   Vec2 origin{0, 0};
   double z0 = 0;
   Vec2 slope{0, 0};  ///< 0: a flat roof face above the part's lowest roof point
+
+  double top_at(Vec2 p) const {
+    return z0 + slope.x * (p.x - origin.x) + slope.y * (p.y - origin.y);
+  }
 };
 
 /// A triangle in absolute coordinates (terrain).
