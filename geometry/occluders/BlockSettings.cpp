@@ -24,6 +24,11 @@ const SettingTable<BlockOptions>& block_settings() {
           "hilly cities whose buildings have heights)",
           [](B& b) -> double& { return b.terrain_step; }),
       number_setting<B>(
+          "terrain-planes", "m", S::Occluders, 0, 1000,
+          "The terrain occludes as sloped squares of this side, their tops under its slopes "
+          "(0: off; experimental; 32 suits hilly cities whose buildings have heights)",
+          [](B& b) -> double& { return b.terrain_planes; }),
+      number_setting<B>(
           "solid-step", "m", S::Occluders, 0, 100,
           "Buildings that are not height fields (arcades, overhangs) are also shrunk in 3D "
           "(TetGen) into ground-standing levels this far apart (0: off; experimental; needs a "

@@ -114,9 +114,9 @@ class TileMask {
   LatticeMask mask_;
 };
 
-}  // namespace
-
-TerrainRaster terrain_raster(const Terrain& terrain, const Box2& area, double square) {
+/// The squares of side `square` (grown to stay within kMaxSquares) covering `area`, from its
+/// lower corner; no heights yet.
+TerrainRaster square_grid(const Box2& area, double square) {
   TerrainRaster r;
   if (area.empty() || !(square > 0)) return r;
   const double w = area.max.x - area.min.x, h = area.max.y - area.min.y;
@@ -126,34 +126,61 @@ TerrainRaster terrain_raster(const Terrain& terrain, const Box2& area, double sq
   r.columns = std::max(1, static_cast<int>(std::ceil(w / side)));
   r.rows = std::max(1, static_cast<int>(std::ceil(h / side)));
   r.area = {area.min, {area.min.x + r.columns * side, area.min.y + r.rows * side}};
-  const std::size_t count = static_cast<std::size_t>(r.columns) * static_cast<std::size_t>(r.rows);
-  r.lowest.assign(count, std::numeric_limits<double>::infinity());
-  std::vector<double> covered(count, 0.0);
+  return r;
+}
+
+/// Square (i, j) of `r`, grown by `grow` on every side.
+Box2 square_box(const TerrainRaster& r, int i, int j, double grow) {
+  return {{r.area.min.x + i * r.square - grow, r.area.min.y + j * r.square - grow},
+          {r.area.min.x + (i + 1) * r.square + grow, r.area.min.y + (j + 1) * r.square + grow}};
+}
+
+/// Calls f(k, piece) for every triangle of the TIN and every square k (row-major) of `r`,
+/// grown by `grow`, that it meets: `piece` is the triangle clipped to that grown square, its
+/// corners on the triangle. A triangle touching a square's side only still gives that side its
+/// heights (an empty piece is not passed on).
+template <class F>
+void for_each_piece(const Terrain& terrain, const TerrainRaster& r, double grow, F&& f) {
+  const double side = r.square;
   auto column = [&](double x) { return static_cast<int>(std::floor((x - r.area.min.x) / side)); };
   auto row = [&](double y) { return static_cast<int>(std::floor((y - r.area.min.y) / side)); };
+  const Box2 reach = r.area.grown(grow);
   for (const Triangle3& t : terrain.triangles) {
     Box2 b;
     for (const Vec3& v : t.v) b.extend(Vec2{v.x, v.y});
-    if (!b.overlaps(r.area)) continue;
-    // A triangle touching a square's side only still gives that side its heights.
-    const int i0 = std::max(0, column(b.min.x) - 1), i1 = std::min(r.columns - 1, column(b.max.x));
-    const int j0 = std::max(0, row(b.min.y) - 1), j1 = std::min(r.rows - 1, row(b.max.y));
+    if (!b.overlaps(reach)) continue;
+    const int i0 = std::max(0, column(b.min.x - grow) - 1);
+    const int i1 = std::min(r.columns - 1, column(b.max.x + grow));
+    const int j0 = std::max(0, row(b.min.y - grow) - 1);
+    const int j1 = std::min(r.rows - 1, row(b.max.y + grow));
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
-        const Box2 cell{{r.area.min.x + i * side, r.area.min.y + j * side},
-                        {r.area.min.x + (i + 1) * side, r.area.min.y + (j + 1) * side}};
-        const ClipPolygon piece = clip_to_box(t, cell);
+        const ClipPolygon piece = clip_to_box(t, square_box(r, i, j, grow));
         if (piece.n == 0) continue;
-        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(r.columns) +
-                              static_cast<std::size_t>(i);
-        for (int c = 0; c < piece.n; ++c)
-          r.lowest[k] = std::min(r.lowest[k], piece.p[static_cast<std::size_t>(c)].z);
-        covered[k] += area_of(piece);
+        f(static_cast<std::size_t>(j) * static_cast<std::size_t>(r.columns) +
+              static_cast<std::size_t>(i),
+          piece);
       }
   }
+}
+
+}  // namespace
+
+TerrainRaster terrain_raster(const Terrain& terrain, const Box2& area, double square) {
+  TerrainRaster r = square_grid(area, square);
+  if (r.columns == 0) return r;
+  const std::size_t count = static_cast<std::size_t>(r.columns) * static_cast<std::size_t>(r.rows);
+  r.lowest.assign(count, std::numeric_limits<double>::infinity());
+  std::vector<double> covered(count, 0.0);
+  for_each_piece(terrain, r, 0, [&](std::size_t k, const ClipPolygon& piece) {
+    for (int c = 0; c < piece.n; ++c)
+      r.lowest[k] = std::min(r.lowest[k], piece.p[static_cast<std::size_t>(c)].z);
+    covered[k] += area_of(piece);
+  });
   // A square the TIN leaves partly open has no known ground there: it holds nothing up.
   for (std::size_t k = 0; k < count; ++k)
-    if (covered[k] < kCovered * side * side) r.lowest[k] = -std::numeric_limits<double>::infinity();
+    if (covered[k] < kCovered * r.square * r.square)
+      r.lowest[k] = -std::numeric_limits<double>::infinity();
   return r;
 }
 
@@ -201,6 +228,79 @@ std::vector<Occluder> terrain_occluders(const Terrain& terrain, const Box2& area
         if (full) break;  // every lower level is this whole tile again
       }
     }
+  return out;
+}
+
+std::vector<Occluder> terrain_plane_occluders(const Terrain& terrain, const Box2& area,
+                                              double square, double epsilon) {
+  std::vector<Occluder> out;
+  if (terrain.empty() || !(epsilon > 0)) return out;
+  const TerrainRaster r = square_grid(area, square);
+  if (r.columns == 0) return out;
+  const std::size_t count = static_cast<std::size_t>(r.columns) * static_cast<std::size_t>(r.rows);
+  // Pass 1: each square's mean gradient, the gradients of the TIN's pieces in it weighted by
+  // their areas (the plane the terrain leans along there; any gradient stays conservative,
+  // pass 2 lowers the plane under the terrain whatever it is).
+  std::vector<Vec2> gradient(count, Vec2{0, 0});
+  std::vector<double> covered(count, 0.0);
+  for_each_piece(terrain, r, 0, [&](std::size_t k, const ClipPolygon& piece) {
+    const double a = area_of(piece);
+    // The piece's plane (its corners lie on one triangle), by Newell's normal. Cliffs (no
+    // area in plan) carry no slope.
+    double nx = 0, ny = 0, nz = 0;
+    for (int c = 0; c < piece.n; ++c) {
+      const Point3& u = piece.p[static_cast<std::size_t>(c)];
+      const Point3& v = piece.p[static_cast<std::size_t>((c + 1) % piece.n)];
+      nx += (u.y - v.y) * (u.z + v.z);
+      ny += (u.z - v.z) * (u.x + v.x);
+      nz += (u.x - v.x) * (u.y + v.y);
+    }
+    if (std::abs(nz) > 1e-9 * (std::abs(nx) + std::abs(ny)) && nz != 0)
+      gradient[k] += a * Vec2{-nx / nz, -ny / nz};
+    covered[k] += a;
+  });
+  // Pass 2: over the square grown by ε (a box holding the disk of radius ε around each of its
+  // points), the least of terrain - plane. terrain - plane is linear on each piece, so its least
+  // value is at a piece's corner.
+  std::vector<double> least(count, std::numeric_limits<double>::infinity());
+  std::vector<double> covered_grown(count, 0.0);
+  for (std::size_t k = 0; k < count; ++k)
+    if (covered[k] >= kCovered * r.square * r.square) gradient[k] /= covered[k];
+  auto square_at = [&](std::size_t k) {
+    return square_box(r, static_cast<int>(k % static_cast<std::size_t>(r.columns)),
+                      static_cast<int>(k / static_cast<std::size_t>(r.columns)), 0);
+  };
+  auto origin = [&](std::size_t k) {
+    const Box2 b = square_at(k);
+    return 0.5 * (b.min + b.max);
+  };
+  for_each_piece(terrain, r, epsilon, [&](std::size_t k, const ClipPolygon& piece) {
+    if (covered[k] < kCovered * r.square * r.square) return;
+    const Vec2 o = origin(k), g = gradient[k];
+    for (int c = 0; c < piece.n; ++c) {
+      const Point3& v = piece.p[static_cast<std::size_t>(c)];
+      least[k] = std::min(least[k], v.z - (g.x * (v.x - o.x) + g.y * (v.y - o.y)));
+    }
+    covered_grown[k] += area_of(piece);
+  });
+  const double grown_side = r.square + 2 * epsilon;
+  for (std::size_t k = 0; k < count; ++k) {
+    // The terrain must be known within ε of every point of the square.
+    if (covered_grown[k] < kCovered * grown_side * grown_side) continue;
+    const Vec2 g = gradient[k];
+    const Box2 box = square_at(k);
+    Occluder o;
+    o.block = kTerrainBlock;
+    // For p in the square and q within ε: plane(p) <= plane(q) + ε·|g| <= terrain(q) once the
+    // plane is lowered by ε·|g| below its least value over the grown square (thesis 7.4). The
+    // rounding of the clipped corners is a few ulps of a height: 0.1 µm more covers it.
+    o.top_z = least[k] - epsilon * std::hypot(g.x, g.y) - 1e-7;
+    o.slope = g;
+    o.origin = origin(k);
+    o.shape.outer = box.corners();
+    o.bounds = box;
+    out.push_back(std::move(o));
+  }
   return out;
 }
 

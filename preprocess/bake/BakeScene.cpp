@@ -88,6 +88,10 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   for (geometry::Occluder& o : geometry::terrain_occluders(city.terrain, city.bounds().xy,
                                                            options_.blocks.terrain_step, shrink))
     occluders_.push_back(std::move(o));
+  if (const double side = options_.blocks.terrain_planes; side > 0)
+    for (geometry::Occluder& o :
+         geometry::terrain_plane_occluders(city.terrain, city.bounds().xy, side, shrink))
+      occluders_.push_back(std::move(o));
   // Roof faces above the blocks' levels, with their slopes (thesis 4.2.1, 7.4): not fused, as a
   // face's plane holds only over its own ground.
   for (geometry::Occluder& o :

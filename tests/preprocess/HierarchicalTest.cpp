@@ -114,7 +114,8 @@ TEST(Hierarchical, DefaultsGiveASupersetOfTheBruteForcePvsAtMostTwoPercentLarger
 // The terrain's levels are occluders like any other: the cells stand on them, inside their
 // outlines and above their tops, which no building's occluder does. The hierarchical test
 // (near maps, sample horizons, sight lines) stays a superset of the brute-force map over the
-// same occluders, and the hills hide objects that the buildings alone do not.
+// same occluders, and the hills hide objects that the buildings alone do not; the same with
+// the terrain as sloped squares, which hide more than the levels.
 TEST(Hierarchical, TerrainOccludersKeepASupersetOfTheBruteForcePvsAndHideMore) {
   BakeOptions o = strip_options(hilly_city());
   o.blocks.terrain_step = 2;  // finer than any user would take: more levels, more walls
@@ -122,13 +123,24 @@ TEST(Hierarchical, TerrainOccludersKeepASupersetOfTheBruteForcePvsAndHideMore) {
   ASSERT_GT(with.cells, 15u);
   EXPECT_EQ(with.not_superset, 0u);
   EXPECT_LE(with.hierarchical, 1.02 * with.brute);
+  // The terrain as sloped squares (terrain_plane_occluders): every wall of a square has a
+  // sloped top, and samples stand above the squares around them, where every wall casts a
+  // shadow (casts_shadow). They hide more than the levels.
   o.blocks.terrain_step = 0;
+  o.blocks.terrain_planes = 12;
+  const Comparison planes = compare(hilly_city(), o);
+  EXPECT_EQ(planes.not_superset, 0u);
+  EXPECT_LE(planes.hierarchical, 1.02 * planes.brute);
+  EXPECT_LT(planes.brute, with.brute);
+  o.blocks.terrain_planes = 0;
   const Comparison without = compare(hilly_city(), o);
   EXPECT_EQ(without.not_superset, 0u);
   EXPECT_LT(with.brute, without.brute);
   std::printf(
-      "hills: mean PVS hierarchical %.2f brute force %.2f; without the terrain %.2f / %.2f\n",
+      "hills: mean PVS hierarchical %.2f brute force %.2f; with planes %.2f / %.2f; without "
+      "the terrain %.2f / %.2f\n",
       with.hierarchical / double(with.cells), with.brute / double(with.cells),
+      planes.hierarchical / double(planes.cells), planes.brute / double(planes.cells),
       without.hierarchical / double(without.cells), without.brute / double(without.cells));
 }
 

@@ -18,6 +18,7 @@
 #   payloads  --payload carries a property into the file (2.1) as each object's payload
 #   citygml   a CityGML district bakes with the defaults and validates with no miss
 #   terrain   --terrain DEM (an Esri ASCII grid of a slope): buildings and cells stand on it,
+#             --terrain-planes makes it occlude,
 #             the validator finds no miss; bad rasters exit 17; --cells FILE is --region FILE
 # Usage: preprocess_cli_test.sh CASE WORK_DIR PREPROCESS CITYGEN VALIDATE INSPECT BAD_INPUT_DIR
 set -euo pipefail
@@ -325,6 +326,16 @@ terrain)
     fail "cells do not follow the terrain: lowest $(sort -g zmin.txt | head -1), highest $(sort -g zmin.txt | tail -1)"
   "$validate" tiles.geojson slope.pvs --terrain slope.asc --viewpoints 400 \
     --tightness-viewpoints 50 || fail "urbanpvs-validate found misses on the terrain"
+  # The DEM as sloped squares (--terrain-planes): counted as the terrain's occluders, stored in
+  # the file's settings, and still no miss.
+  "$preprocess" tiles.geojson -o planes.pvs --max-cell-edge 20 --epsilon 2 --terrain slope.asc \
+    --terrain-planes 20 2> stderr.txt || fail "--terrain-planes: $(cat stderr.txt)"
+  grep -q '^objects: .*, [1-9][0-9]* of the terrain)' stderr.txt ||
+    fail "the summary does not count the terrain's squares: $(cat stderr.txt)"
+  "$inspect" planes.pvs | grep -q 'property:    terrain_planes_m = 20' ||
+    fail "the setting is not in the file"
+  "$validate" tiles.geojson planes.pvs --terrain slope.asc --viewpoints 400 \
+    --tightness-viewpoints 50 || fail "urbanpvs-validate found misses with --terrain-planes"
   # A file GDAL cannot read as a raster: exit 17, the file named, nothing written.
   rc=0
   "$preprocess" tiles.geojson -o bad.pvs --terrain tiles.geojson --quiet 2> stderr.txt || rc=$?

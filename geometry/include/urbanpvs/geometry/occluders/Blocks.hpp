@@ -37,6 +37,12 @@ struct BlockOptions {
   /// mean PVS; on a generated hilly city they took 9.7 % off it at 13 % more time.
   /// [Units: m]
   double terrain_step = 0;
+  /// The terrain occludes as sloped prisms over squares of this side, each top a plane along
+  /// the terrain's mean gradient over the square, lowered under the terrain within ε
+  /// (TerrainOccluders.hpp, terrain_plane_occluders): crests and hillsides cast the shadows of
+  /// sloped edges (thesis 4.2.1). 0, the default: off (README, "Terrain as an occluder").
+  /// [Units: m]
+  double terrain_planes = 0;
   /// Buildings that are not height fields (a face looks down from above the ground: arcades,
   /// overhangs, bridges) are also shrunk in 3D (thesis 7.3.1: the outside meshed into
   /// tetrahedra by TetGen, each enlarged by ε) into ground-standing levels this far apart

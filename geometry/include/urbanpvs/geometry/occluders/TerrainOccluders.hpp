@@ -50,4 +50,14 @@ TerrainRaster terrain_raster(const Terrain& terrain, const Box2& area, double sq
 std::vector<Occluder> terrain_occluders(const Terrain& terrain, const Box2& area, double step,
                                         double epsilon);
 
+/// The terrain's occluders over `area` as sloped prisms, one per square of side `square` (m,
+/// > 0; grown to stay within the raster's limit): each square's top is a plane along the mean
+/// gradient of the terrain over the square, lowered until, for every point p of the square and
+/// every q within `epsilon` (m, > 0) of p horizontally, the terrain at q is at least the plane
+/// at p (the 2.5D erosion of thesis 7.4: f(q) >= f'(p) for |q - p| <= ε). The edges of the
+/// squares are sloped edges that cast the shadows of thesis 4.2.1: crests and hillsides hide
+/// what lies behind them. A square whose ε-surroundings the TIN does not wholly cover gets none.
+std::vector<Occluder> terrain_plane_occluders(const Terrain& terrain, const Box2& area,
+                                              double square, double epsilon);
+
 }  // namespace urbanpvs::geometry
