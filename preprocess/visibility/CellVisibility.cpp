@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <tuple>
 
+#include "urbanpvs/geometry/occluders/RoofPlaneOccluders.hpp"
 #include "urbanpvs/preprocess/visibility/CullMapHorizon.hpp"
 #include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
@@ -125,6 +126,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
 
     // Occluders that meet this map and are not known to add nothing (thesis 5.6.1).
     render.clear();
+    bool faces_left_out = false;
     occluder_tree.visit(
         [&](std::uint32_t id, const BoxQuadtree::Node& n) {
           if (occluder_node_done_[id] == stamp_ || !meets(n.box.xy, bounds)) return false;
@@ -153,6 +155,15 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
               ++c.occluders_behind_horizon;
               return;
             }
+          }
+          // Roof faces stay out of the maps that are not the whole area. Every sample's map
+          // would rasterize the shadows of every face near the cell (several per building),
+          // and these small maps decide few objects: the far field decides most. What such a
+          // map shows is left to the far field, whose horizons and exact sight lines take in
+          // every face; what it hides without the faces is hidden with them.
+          if (!last && scene_.occluders()[o].block == geometry::kRoofPlaneBlock) {
+            faces_left_out = true;
+            return;
           }
           render.push_back(&scene_.occluders()[o]);
         });
@@ -183,11 +194,15 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
                         if (object_decided_[o] == stamp_) return;
                         const geometry::Box3& b = objects[o].bbox;
                         if (last || inside_map(grid, b.xy)) {
-                          decide(o, !hidden_by(map, b, outlines[o]));
+                          const bool shown = !hidden_by(map, b, outlines[o]);
                           ++c.objects_in_map;
-                        } else {
-                          pending.push_back(o);
+                          // Hidden without the roof faces is hidden with them.
+                          if (!shown || !faces_left_out) {
+                            decide(o, shown);
+                            return;
+                          }
                         }
+                        pending.push_back(o);
                       });
     if (last) break;
     if (pending.empty()) {
