@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <tuple>
 
-#include "urbanpvs/geometry/occluders/RoofPlaneOccluders.hpp"
 #include "urbanpvs/preprocess/visibility/CullMapHorizon.hpp"
 #include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
@@ -126,7 +125,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
 
     // Occluders that meet this map and are not known to add nothing (thesis 5.6.1).
     render.clear();
-    bool faces_left_out = false;
+    bool sloped_left_out = false;
     occluder_tree.visit(
         [&](std::uint32_t id, const BoxQuadtree::Node& n) {
           if (occluder_node_done_[id] == stamp_ || !meets(n.box.xy, bounds)) return false;
@@ -156,13 +155,14 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
               return;
             }
           }
-          // Roof faces stay out of the maps that are not the whole area. Every sample's map
-          // would rasterize the shadows of every face near the cell (several per building),
-          // and these small maps decide few objects: the far field decides most. What such a
-          // map shows is left to the far field, whose horizons and exact sight lines take in
-          // every face; what it hides without the faces is hidden with them.
-          if (!last && scene_.occluders()[o].block == geometry::kRoofPlaneBlock) {
-            faces_left_out = true;
+          // Occluders with sloped tops (roof faces, the terrain's squares) stay out of the
+          // maps that are not the whole area. Every sample's map would rasterize the shadows
+          // of all of them near the cell (several per building), and these small maps decide
+          // few objects: the far field decides most. What such a map shows is left to the far
+          // field, whose horizons and exact sight lines take in every sloped top; what it hides
+          // without them is hidden with them.
+          if (!last && scene_.occluders()[o].sloped()) {
+            sloped_left_out = true;
             return;
           }
           render.push_back(&scene_.occluders()[o]);
@@ -196,8 +196,8 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
                         if (last || inside_map(grid, b.xy)) {
                           const bool shown = !hidden_by(map, b, outlines[o]);
                           ++c.objects_in_map;
-                          // Hidden without the roof faces is hidden with them.
-                          if (!shown || !faces_left_out) {
+                          // Hidden without the sloped tops is hidden with them.
+                          if (!shown || !sloped_left_out) {
                             decide(o, shown);
                             return;
                           }
