@@ -265,7 +265,7 @@ std::vector<Occluder> terrain_plane_occluders(const Terrain& terrain, const Box2
   std::vector<double> least(count, std::numeric_limits<double>::infinity());
   std::vector<double> covered_grown(count, 0.0);
   for (std::size_t k = 0; k < count; ++k)
-    if (covered[k] >= kCovered * r.square * r.square) gradient[k] /= covered[k];
+    if (covered[k] > 0) gradient[k] /= covered[k];
   auto square_at = [&](std::size_t k) {
     return square_box(r, static_cast<int>(k % static_cast<std::size_t>(r.columns)),
                       static_cast<int>(k / static_cast<std::size_t>(r.columns)), 0);
@@ -275,7 +275,6 @@ std::vector<Occluder> terrain_plane_occluders(const Terrain& terrain, const Box2
     return 0.5 * (b.min + b.max);
   };
   for_each_piece(terrain, r, epsilon, [&](std::size_t k, const ClipPolygon& piece) {
-    if (covered[k] < kCovered * r.square * r.square) return;
     const Vec2 o = origin(k), g = gradient[k];
     for (int c = 0; c < piece.n; ++c) {
       const Point3& v = piece.p[static_cast<std::size_t>(c)];
@@ -285,7 +284,7 @@ std::vector<Occluder> terrain_plane_occluders(const Terrain& terrain, const Box2
   });
   const double grown_side = r.square + 2 * epsilon;
   for (std::size_t k = 0; k < count; ++k) {
-    // The terrain must be known within ε of every point of the square.
+    // The terrain must be known within ε of every point of the square (so in it too).
     if (covered_grown[k] < kCovered * grown_side * grown_side) continue;
     const Vec2 g = gradient[k];
     const Box2 box = square_at(k);

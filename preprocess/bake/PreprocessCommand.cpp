@@ -278,15 +278,15 @@ int Run::execute() {
   report_.seconds.scene = seconds_since(start);
   report_.blocks = scene.blocks().size();
   report_.occluders = scene.occluders().size();
-  report_.terrain_occluders = static_cast<std::size_t>(std::count_if(
-      scene.occluders().begin(), scene.occluders().end(),
-      [](const geometry::Occluder& o) { return o.block == geometry::kTerrainBlock; }));
-  report_.roof_plane_occluders = static_cast<std::size_t>(std::count_if(
-      scene.occluders().begin(), scene.occluders().end(),
-      [](const geometry::Occluder& o) { return o.block == geometry::kRoofPlaneBlock; }));
-  report_.solid_occluders = static_cast<std::size_t>(
-      std::count_if(scene.occluders().begin(), scene.occluders().end(),
-                    [](const geometry::Occluder& o) { return o.block == geometry::kSolidBlock; }));
+  // Occluders that stand on no block carry where they come from in Occluder::block.
+  auto occluders_from = [&](std::uint32_t source) {
+    return static_cast<std::size_t>(
+        std::count_if(scene.occluders().begin(), scene.occluders().end(),
+                      [source](const geometry::Occluder& o) { return o.block == source; }));
+  };
+  report_.terrain_occluders = occluders_from(geometry::kTerrainBlock);
+  report_.roof_plane_occluders = occluders_from(geometry::kRoofPlaneBlock);
+  report_.solid_occluders = occluders_from(geometry::kSolidBlock);
   report_.solids_shrunk = scene.solids_shrunk();
   report_.solids_declined = scene.solids_declined();
   report_.cells = scene.cell_count();

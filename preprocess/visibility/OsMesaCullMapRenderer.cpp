@@ -145,19 +145,18 @@ CullMap OsMesaCullMapRenderer::cell_cull_map(const CullMapGrid& grid, std::span<
   auto build = [&](const Vec3& sample) {
     triangles.clear();
     for (const geometry::Occluder* o : occluders)
-      for_each_shadow(sample, *o, clip, [&](const OccluderShadow& shadow) {
-        const OccluderShadow* s = &shadow;
+      for_each_shadow(sample, *o, clip, [&](const OccluderShadow& s) {
         if (stats) ++stats->shadows;
         // depth(i + 0.5, j + 0.5) = (height(origin + k·(i + 0.5, j + 0.5)) - zlo) / range
-        const float pa = static_cast<float>(s->a * grid.pixel / range);
-        const float pb = static_cast<float>(s->b * grid.pixel / range);
-        const float pc = static_cast<float>((s->height(grid.origin) - zlo) / range);
+        const float pa = static_cast<float>(s.a * grid.pixel / range);
+        const float pb = static_cast<float>(s.b * grid.pixel / range);
+        const float pc = static_cast<float>((s.height(grid.origin) - zlo) / range);
         auto put = [&](Vec2 p) {
           triangles.insert(triangles.end(), {static_cast<float>(p.x - grid.origin.x),
                                              static_cast<float>(p.y - grid.origin.y), pa, pb, pc});
         };
-        for (std::size_t k = 1; k + 1 < s->polygon.size(); ++k)
-          put(s->polygon[0]), put(s->polygon[k]), put(s->polygon[k + 1]);
+        for (std::size_t k = 1; k + 1 < s.polygon.size(); ++k)
+          put(s.polygon[0]), put(s.polygon[k]), put(s.polygon[k + 1]);
       });
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(triangles.size() * sizeof(float)),
                  triangles.data(), GL_STREAM_DRAW);
