@@ -20,6 +20,10 @@ void set_bit(std::vector<std::uint64_t>& bits, std::uint32_t k) {
   bits[k >> 6] |= std::uint64_t{1} << (k & 63);
 }
 
+// A sloped top that rises at least this much per metre (14°): a pitched roof face, a hillside;
+// not the drainage fall of a flat roof, whose walls all stand about as high as its top.
+constexpr double kSteepTop = 0.25;
+
 // Wraps a stamp; clears the marks it stamps when it comes round to 0.
 void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uint32_t>*> marks) {
   if (++stamp != 0) return;
@@ -27,10 +31,25 @@ void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uin
   stamp = 1;
 }
 
+// Whether `o`'s top rises away from `sample` (uphill from the sample towards its middle). Such a
+// top shows the sample mostly its low side: the walls that face the sample are a roof face's
+// eaves, which the block's level below it holds too (its prism is cut at the lowest roof point,
+// thesis 7.3.2), and the sides that rise from them; its high side faces away (a ridge reaches
+// the horizon as the near wall of the face beyond it, thesis 4.2.1). So the horizon leaves out
+// steep tops that rise away: fewer walls to add, for little that it loses. The PVS does not depend
+// on the horizon: a pixel centre that it leaves open is traced exactly past every occluder
+// (points_hidden), so a lower horizon costs sight lines, never hidden objects (README, "Sloped tops
+// that rise away").
+bool rises_away(const geometry::Occluder& o, const Vec3& sample) {
+  const Vec2 middle = 0.5 * (o.bounds.min + o.bounds.max);
+  return geometry::dot(o.slope, middle - Vec2{sample.x, sample.y}) > 0;
+}
+
 }  // namespace
 
-FarField::FarField(const BakeScene& scene, std::size_t kept_samples)
+FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops tops)
     : scene_(scene),
+      leave_out_rising_(tops == HorizonTops::AllButSteepRisingAway),
       far_visible_(scene.city().objects.size(), 0),
       asked_(scene.city().objects.size(), 0),
       seen_in_sweep_(scene.city().objects.size(), 0) {
@@ -41,6 +60,9 @@ FarField::FarField(const BakeScene& scene, std::size_t kept_samples)
     a.asked.assign(words, 0);
     a.seen.assign(words, 0);
   }
+  steep_.reserve(scene.occluders().size());
+  for (const geometry::Occluder& o : scene.occluders())
+    steep_.push_back(std::hypot(o.slope.x, o.slope.y) >= kSteepTop ? 1 : 0);
   const BoxQuadtree& tree = scene.object_index();
   const auto& nodes = tree.nodes();
   parent_.assign(nodes.size(), -1);
@@ -272,6 +294,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
         if (h.hides(n.box)) continue;
         for (std::uint32_t k = 0; k < n.count; ++k) {
           const std::uint32_t o = tree.items()[n.first + k];
+          if (leave_out_rising_ && steep_[o] && rises_away(scene_.occluders()[o], sample)) continue;
           push(h.distance_to(tree.box(o).xy), kOccluder, o);
         }
         for (std::int32_t child : n.child)

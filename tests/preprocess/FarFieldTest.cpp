@@ -3,13 +3,17 @@
 // neither may change a PVS. The far field that keeps answers is compared with one that keeps
 // none, over cells taken in random order with random open sets (as the near maps would leave
 // them); the horizon's query that leaves the sweep as it is gives the answers of the one that
-// moves it; and the Hilbert order is a permutation that walks from neighbour to neighbour.
+// moves it; horizons that leave out steep sloped tops rising away give the answers of horizons
+// that take every top; and the Hilbert order is a permutation that walks from neighbour to
+// neighbour.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 
+#include "SlopedLod2City.hpp"
 #include "urbanpvs/cities/CityGenerator.hpp"
 #include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
@@ -106,6 +110,41 @@ TEST(FarField, FewKeptSamplesStillGiveTheSameObjects) {
               sorted(fresh.visible(samples, open, counts)))
         << "cell " << cell;
   }
+}
+
+const BakeScene& sloped_scene() {
+  static const BakeScene s(sloped_lod2_city(), BakeOptions{});
+  return s;
+}
+
+TEST(FarField, SteepTopsRisingAwayLeftOutOfTheHorizonsGiveTheSameObjectsWithFewerWalls) {
+  const BakeScene& s = sloped_scene();
+  std::size_t steep = 0;
+  for (const geometry::Occluder& o : s.occluders())
+    if (std::hypot(o.slope.x, o.slope.y) >= 0.25) ++steep;
+  ASSERT_GT(steep, s.occluders().size() / 2);
+  // Without kept answers, so that both sweep every sample and the counts compare.
+  FarField lean(s, 0), full(s, 0, FarField::HorizonTops::All);
+  CellCounters lean_counts, full_counts;
+  std::vector<std::uint32_t> cells(s.cell_count());
+  std::iota(cells.begin(), cells.end(), 0u);
+  std::vector<std::uint32_t> order = along_hilbert_curve(s.mesh(), cells);
+  order.resize(std::min<std::size_t>(order.size(), 120));
+  std::size_t seen = 0, asked = 0;
+  for (std::uint32_t cell : order) {
+    const std::vector<Vec3> samples = s.samples(cell);
+    std::vector<std::uint32_t> open(s.city().objects.size());
+    std::iota(open.begin(), open.end(), 0u);
+    const std::vector<std::uint32_t> a = sorted(lean.visible(samples, open, lean_counts));
+    ASSERT_EQ(a, sorted(full.visible(samples, open, full_counts))) << "cell " << cell;
+    seen += a.size();
+    asked += open.size();
+  }
+  EXPECT_GT(seen, asked / 50);
+  EXPECT_LT(seen, asked);
+  EXPECT_EQ(lean_counts.sample_sweeps, full_counts.sample_sweeps);
+  // The walls left out: a quarter of those the full horizons add, or more.
+  EXPECT_LT(lean_counts.occluders_far_field, full_counts.occluders_far_field * 3 / 4);
 }
 
 TEST(SampleHorizon, AskingAsIsGivesTheSweepsAnswerAndChangesNoLaterOne) {

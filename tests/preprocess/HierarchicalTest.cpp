@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "SlopedLod2City.hpp"
 #include "urbanpvs/cities/CityGenerator.hpp"
 #include "urbanpvs/cities/CityJsonWriter.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
@@ -39,22 +40,6 @@ const geometry::City& hilly_city() {
     p.hills = 40;
     return geometry::read_city_text(cities::cityJsonText(cities::generateCity(p)),
                                     "hills.city.json");
-  }();
-  return city;
-}
-
-// The same city with LoD2 roofs read with their slopes (--sloped-roofs): roof faces become
-// occluders with sloped tops (RoofPlaneOccluders.hpp).
-const geometry::City& sloped_city() {
-  static const geometry::City city = [] {
-    cities::CityParams p;
-    p.size_km2 = 0.1;
-    p.seed = 5;
-    p.roofs = cities::RoofMode::Lod2;
-    geometry::ReadOptions read;
-    read.sloped_roofs = true;
-    return geometry::read_city_text(cities::cityJsonText(cities::generateCity(p)), "lod2.city.json",
-                                    read);
   }();
   return city;
 }
@@ -132,17 +117,17 @@ TEST(Hierarchical, DefaultsGiveASupersetOfTheBruteForcePvsAtMostTwoPercentLarger
 // map of every occluder, faces included: a superset, at most 2 % larger, with the default maps
 // and with maps grown until they cover the city (where the last map takes the faces in).
 TEST(Hierarchical, SlopedRoofFacesKeepASupersetOfTheBruteForcePvs) {
-  BakeOptions o = strip_options(sloped_city());
-  const BakeScene scene(sloped_city(), o);
+  BakeOptions o = strip_options(sloped_lod2_city());
+  const BakeScene scene(sloped_lod2_city(), o);
   ASSERT_GT(std::count_if(scene.occluders().begin(), scene.occluders().end(),
                           [](const geometry::Occluder& x) { return x.sloped(); }),
             100);
-  const Comparison c = compare(sloped_city(), o);
+  const Comparison c = compare(sloped_lod2_city(), o);
   ASSERT_GT(c.cells, 15u);
   EXPECT_EQ(c.not_superset, 0u);
   EXPECT_LE(c.hierarchical, 1.02 * c.brute);
   o.max_map = 65536;
-  const Comparison grown = compare(sloped_city(), o);
+  const Comparison grown = compare(sloped_lod2_city(), o);
   EXPECT_EQ(grown.not_superset, 0u);
   EXPECT_LE(grown.hierarchical, 1.02 * grown.brute);
   std::printf("sloped roofs: mean PVS hierarchical %.2f brute force %.2f; grown maps %.2f\n",

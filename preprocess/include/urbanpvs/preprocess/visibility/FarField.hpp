@@ -9,7 +9,8 @@
 // are traced exactly (SightLine), so the far field never hides what the brute-force map shows.
 // Occluders far from a sample enter its horizon by their far outlines (BakeScene::
 // horizon_occluder: a polygon inside each, with fewer walls); a part of an occluder hides no
-// more than the whole, and the sight lines keep every wall.
+// more than the whole, and the sight lines keep every wall. Steep sloped tops that rise away from
+// a sample stay out of its horizon (their walls that face it are mostly eaves the levels hold).
 #pragma once
 
 #include <cstdint>
@@ -33,9 +34,16 @@ namespace urbanpvs::preprocess {
 /// kept, so it stays the same on any thread and in any order of the cells.
 class FarField {
  public:
+  /// Which occluders the horizons take. The PVS is the same either way (a pixel centre the
+  /// horizon leaves open is traced exactly past every occluder); the time is not: steep sloped
+  /// tops that rise away from a sample add walls that rarely raise its horizon (README, "Sloped
+  /// tops that rise away").
+  enum class HorizonTops { AllButSteepRisingAway, All };
+
   /// Keeps the answers of up to `kept_samples` samples (0: none); fewer when one sample's
   /// answers (two bits per object of the city) would make them take more than kKeptBytes.
-  explicit FarField(const BakeScene& scene, std::size_t kept_samples = kKeptSamples);
+  explicit FarField(const BakeScene& scene, std::size_t kept_samples = kKeptSamples,
+                    HorizonTops tops = HorizonTops::AllButSteepRisingAway);
 
   static constexpr std::size_t kKeptSamples = 256;
   static constexpr std::size_t kKeptBytes = std::size_t{32} << 20;
@@ -70,6 +78,7 @@ class FarField {
   SampleAnswers* keep(const Vec3& sample);
 
   const BakeScene& scene_;
+  bool leave_out_rising_;
   SampleHorizon horizon_;
   std::vector<Event> events_;
   std::vector<std::uint32_t> open_below_;    ///< asked objects per object-quadtree node
@@ -78,6 +87,7 @@ class FarField {
   std::vector<std::int32_t> parent_;         ///< per object-quadtree node (-1: the root)
   std::vector<std::int32_t> node_of_;        ///< per object: the node holding it (-1: none)
   std::uint32_t depth_ = 0;                  ///< of the object quadtree
+  std::vector<std::uint8_t> steep_;          ///< per occluder: its top rises kSteepTop or more
   // Marks valid where they equal the current call's or sweep's stamp (no clearing per call).
   std::vector<std::uint32_t> far_visible_, asked_, seen_in_sweep_;
   std::uint32_t stamp_ = 0, sweep_stamp_ = 0;
