@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "urbanpvs/preprocess/visibility/ObjectCulling.hpp"
@@ -237,6 +238,8 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
   // in the brute-force map. The margin keeps float rounding of that map's heights (a few µm)
   // from making this one stricter.
   constexpr double kSightMargin = 1e-4;
+  // The occluder that blocked this sample's last sight line, asked first by the next one.
+  std::uint32_t blocker = std::numeric_limits<std::uint32_t>::max();
   auto points_hidden = [&](const SampleHorizon& h, std::uint32_t o) {
     const double top = objects[o].bbox.zmax;
     const auto r = lattice.touched(objects[o].bbox.xy);
@@ -247,7 +250,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
         if (h.hides_point(p, top)) continue;
         ++c.sight_lines;
         if (!sight_line_blocked(h.sample(), Vec3{p.x, p.y, top}, tree, scene_.occluders(),
-                                kSightMargin))
+                                kSightMargin, &blocker))
           return false;
       }
     }

@@ -305,6 +305,7 @@ TEST(SightLine, AgreesWithEveryDrawnWallTestedInTurn) {
   }
   const BoxQuadtree tree(boxes, 4);
   int blocked = 0;
+  std::uint32_t last_blocker = 1000;  // none yet
   for (int k = 0; k < 4000; ++k) {
     const Vec3 s{pos(rng), pos(rng), eye(rng)}, p{pos(rng), pos(rng), top(rng)};
     // The walls a map draws: those facing s, and every wall of an occluder s is above.
@@ -315,6 +316,18 @@ TEST(SightLine, AgreesWithEveryDrawnWallTestedInTurn) {
         expected = expected || (drawn && wall_cuts(s, p, a, b, o.top_z));
       });
     ASSERT_EQ(sight_line_blocked(s, p, tree, occluders, 0), expected) << k;
+    // Asking an occluder first (the last blocker, or one at random) gives the same answer, and
+    // the blocker named blocks the line alone.
+    for (std::uint32_t first : {last_blocker, static_cast<std::uint32_t>(rng() % 100)}) {
+      std::uint32_t named = first;
+      ASSERT_EQ(sight_line_blocked(s, p, tree, occluders, 0, &named), expected) << k;
+      if (!expected) continue;
+      ASSERT_LT(named, occluders.size()) << k;
+      const std::vector<Occluder> alone{occluders[named]};
+      const BoxQuadtree one(std::vector<Box3>{boxes[named]}, 4);
+      ASSERT_TRUE(sight_line_blocked(s, p, one, alone, 0)) << k;
+      last_blocker = named;
+    }
     blocked += expected ? 1 : 0;
   }
   EXPECT_GT(blocked, 1000);

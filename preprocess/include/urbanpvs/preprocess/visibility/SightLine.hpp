@@ -6,6 +6,7 @@
 // map does.
 #pragma once
 
+#include <cstdint>
 #include <span>
 
 #include "urbanpvs/geometry/occluders/Occluder.hpp"
@@ -18,8 +19,11 @@ namespace urbanpvs::preprocess {
 /// `from` (casts_shadow: it faces `from`, or `from` is above the occluder's top) more than
 /// `margin` below the wall's top: the walls a cull map draws, so that the hierarchical test
 /// never hides more than the brute-force map. `tree` indexes `occluders`
-/// (BakeScene::occluder_index()).
+/// (BakeScene::occluder_index()). With `blocker`, the occluder it names (an index; any other
+/// value: none) is tried first, and when the line is blocked it names one that blocks it; the
+/// answer is the same either way.
 bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tree,
-                        std::span<const geometry::Occluder> occluders, double margin);
+                        std::span<const geometry::Occluder> occluders, double margin,
+                        std::uint32_t* blocker = nullptr);
 
 }  // namespace urbanpvs::preprocess
