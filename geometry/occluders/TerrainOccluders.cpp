@@ -255,7 +255,7 @@ std::vector<Occluder> terrain_plane_occluders(const Terrain& terrain, const Box2
       ny += (u.z - v.z) * (u.x + v.x);
       nz += (u.x - v.x) * (u.y + v.y);
     }
-    if (std::abs(nz) > 1e-9 * (std::abs(nx) + std::abs(ny)) && nz != 0)
+    if (std::abs(nz) > 1e-9 * (std::abs(nx) + std::abs(ny)))  // so nz != 0 too
       gradient[k] += a * Vec2{-nx / nz, -ny / nz};
     covered[k] += a;
   });

@@ -40,7 +40,9 @@ bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tre
   // Neighbouring sight lines (the pixel centres of one object, seen from one sample) are mostly
   // blocked by the same occluder: asked first, it spares the walk down the tree. Any occluder
   // that blocks proves the line blocked, so the answer is the same whichever is asked first.
-  if (blocker && *blocker < occluders.size() && blocks(occluders[*blocker])) return true;
+  const std::uint32_t tried =
+      blocker && *blocker < occluders.size() ? *blocker : std::numeric_limits<std::uint32_t>::max();
+  if (tried < occluders.size() && blocks(occluders[tried])) return true;
   bool blocked = false;
   tree.visit(
       [&](std::uint32_t, const BoxQuadtree::Node& n) {
@@ -48,7 +50,7 @@ bool sight_line_blocked(const Vec3& from, const Vec3& to, const BoxQuadtree& tre
         return !blocked && lowest_in(n.box.xy, &low) && n.box.zmax - margin > low;
       },
       [&](std::uint32_t item) {
-        if (blocked || !blocks(occluders[item])) return;
+        if (blocked || item == tried || !blocks(occluders[item])) return;  // tried: not it
         blocked = true;
         if (blocker) *blocker = item;
       });
