@@ -66,9 +66,11 @@ SettingTable<ReadOptions> make_table() {
     r.roof_step = v;
   };
   t.push_back(std::move(roof));
+  // On by default since 2026-12-05 (ReadOptions::sloped_roofs says why): --no-sloped-roofs.
   t.push_back(flag_setting<R>("sloped-roofs", S::Read,
-                              "CityJSON: each roof face rising above its part's occluder adds "
-                              "an occluder under its own plane, whose sloped edges cast shadows",
+                              "CityJSON and CityGML: each roof face rising above its part's "
+                              "occluder adds an occluder under its own plane, whose sloped edges "
+                              "cast shadows",
                               [](R& r) -> bool& { return r.sloped_roofs; }));
   auto payload = text_setting<R>("payload", S::Read,
                                  "Attribute (CityJSON), generic attribute (CityGML), property "

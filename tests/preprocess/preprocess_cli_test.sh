@@ -493,16 +493,32 @@ solids)
   ;;
 
 sloped)
-  # --sloped-roofs on a generated LoD2 city: the roof faces become occluders with sloped tops
+  # Sloped roofs, the default on LoD2 input: the roof faces become occluders with sloped tops
   # (the summary and the report count them, the file's metadata names the setting), the PVSs
-  # shrink against the same city without them, and the validator finds no miss.
+  # shrink against the same city with prisms cut at the eaves (--no-sloped-roofs, or false in
+  # a --config file), and the validator finds no miss. --sloped-roofs is the default's bytes;
+  # the flag and its negation together are a usage error.
   "$citygen" --size-km2 0.1 --seed 8 --roofs lod2 -q -o lod2.city.json
-  "$preprocess" lod2.city.json -o eaves.pvs --quiet || fail "the LoD2 city did not bake"
-  "$preprocess" lod2.city.json -o sloped.pvs --sloped-roofs --report report.json > bake.txt \
-    2> bake.err || fail "--sloped-roofs: $(cat bake.err)"
+  "$preprocess" lod2.city.json -o eaves.pvs --no-sloped-roofs --quiet \
+    || fail "the LoD2 city did not bake with --no-sloped-roofs"
+  "$preprocess" lod2.city.json -o sloped.pvs --report report.json > bake.txt 2> bake.err \
+    || fail "the default bake: $(cat bake.err)"
   grep -q '^objects: .*, [1-9][0-9]* under sloped roof faces)' bake.err \
     || fail "no roof face occluders: $(grep '^objects' bake.err)"
   grep -q '"roof_plane_occluders": *[1-9]' report.json || fail "the report counts no roof faces"
+  "$preprocess" lod2.city.json -o given.pvs --sloped-roofs --quiet || fail "--sloped-roofs failed"
+  cmp -s given.pvs sloped.pvs || fail "--sloped-roofs is not the default"
+  printf '{"sloped_roofs": false}\n' > eaves.json
+  "$preprocess" lod2.city.json -o config.pvs --config eaves.json --quiet \
+    || fail "sloped_roofs: false in a config failed"
+  cmp -s config.pvs eaves.pvs || fail "sloped_roofs: false in a config is not --no-sloped-roofs"
+  rc=0
+  "$preprocess" lod2.city.json -o both.pvs --sloped-roofs --no-sloped-roofs 2> both.err || rc=$?
+  [ "$rc" -eq 2 ] || fail "--sloped-roofs with --no-sloped-roofs: exit $rc, expected 2"
+  grep -q 'excludes' both.err || fail "no reason for refusing both: $(cat both.err)"
+  [ ! -e both.pvs ] || fail "both.pvs written on a usage error"
+  "$inspect" eaves.pvs | grep -q 'property:    sloped_roofs = false' \
+    || fail "--no-sloped-roofs is not in the file"
   "$inspect" sloped.pvs > summary.txt
   grep -q 'property:    sloped_roofs = true' summary.txt || fail "the setting is not in the file"
   mean_eaves=$("$inspect" eaves.pvs | sed -n 's/^pvs size: .*mean \([0-9.]*\),.*/\1/p')

@@ -44,7 +44,9 @@ template <typename Target>
 std::string option_description(const Setting<Target>& s, const Target& defaults) {
   std::string text = s.help;
   if (!s.unit.empty()) text += ", in " + s.unit;
-  if (s.kind == SettingKind::Flag) return text;
+  // A flag that is on by default says so, and how to turn it off (SettingOptions).
+  if (s.kind == SettingKind::Flag)
+    return s.get(defaults) == "true" ? text + " [default: on; --no-" + s.key + ": off]" : text;
   if (const std::string limits = s.limits_text(); !limits.empty()) text += " (" + limits + ")";
   return text + " [default: " + (s.default_text.empty() ? s.get(defaults) : s.default_text) + "]";
 }
@@ -61,7 +63,16 @@ class SettingOptions {
       const std::string name =
           (s.short_name.empty() ? "" : "-" + s.short_name + ",") + "--" + s.key;
       if (s.kind == SettingKind::Flag) {
-        options_[s.key] = app.add_flag(name, flags_[s.key], option_description(s, defaults));
+        // Present: on. A flag that is on by default also gets --no-KEY, so that the default can
+        // be turned off without a --config file; giving both is a usage error.
+        CLI::Option* on = app.add_flag(name, flags_[s.key], option_description(s, defaults));
+        options_[s.key] = on;
+        if (s.get(defaults) == "true") {
+          const std::string off_help = "Turns --" + s.key + " off";
+          CLI::Option* off = app.add_flag("--no-" + s.key, off_help);
+          on->excludes(off);
+          negations_[s.key] = off;
+        }
         continue;
       }
       CLI::Option* o = app.add_option(name, texts_[s.key], option_description(s, defaults));
@@ -78,6 +89,8 @@ class SettingOptions {
   std::map<std::string, std::string> given() const {
     std::map<std::string, std::string> out;
     for (const Setting<Target>& s : table_) {
+      if (const auto off = negations_.find(s.key); off != negations_.end() && off->second->count())
+        out[s.key] = "false";
       if (options_.at(s.key)->count() == 0) continue;
       out[s.key] =
           s.kind == SettingKind::Flag ? (flags_.at(s.key) ? "true" : "false") : texts_.at(s.key);
@@ -95,6 +108,7 @@ class SettingOptions {
   std::map<std::string, std::string> texts_;
   std::map<std::string, bool> flags_;
   std::map<std::string, CLI::Option*> options_;
+  std::map<std::string, CLI::Option*> negations_;  ///< --no-KEY of the flags on by default
 };
 
 }  // namespace urbanpvs::geometry
