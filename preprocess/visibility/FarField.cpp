@@ -259,7 +259,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
   auto farthest = [&](const SampleHorizon& h, const geometry::Box2& b) {
     const double dx = std::max(h.sample().x - b.min.x, b.max.x - h.sample().x);
     const double dy = std::max(h.sample().y - b.min.y, b.max.y - h.sample().y);
-    return std::hypot(dx, dy);
+    return ground_length(dx, dy);
   };
   // Asked objects per node of the object quadtree, so whole districts are tested at once.
   const BoxQuadtree& object_tree = scene_.object_index();

@@ -76,10 +76,10 @@ double SampleHorizon::distance_to(const geometry::Box2& box) const {
   const double dx = std::max({0.0, box.min.x - sample_.x, sample_.x - box.max.x});
   const double dy = std::max({0.0, box.min.y - sample_.y, sample_.y - box.max.y});
   // The sample often lies within the box's x or y range (large quadtree nodes always nearly):
-  // then hypot's answer is exactly the other distance, found without calling it.
+  // then the distance is exactly the other offset.
   if (dx == 0) return dy;
   if (dy == 0) return dx;
-  return std::hypot(dx, dy);
+  return ground_length(dx, dy);
 }
 
 double SampleHorizon::slope_at(int bin, double distance) const {
@@ -207,7 +207,7 @@ SampleHorizon::BoxView SampleHorizon::view(const geometry::Box3& box) const {
     if (rel.max.x == 0) bound({rel.max.x, far_y});
   }
   // The farthest corner pairs the larger |x| with the larger |y|.
-  v.reach = std::hypot(std::max(-rel.min.x, rel.max.x), std::max(-rel.min.y, rel.max.y));
+  v.reach = ground_length(std::max(-rel.min.x, rel.max.x), std::max(-rel.min.y, rel.max.y));
   v.lo += base - kAngleSlack;
   v.hi += base + kAngleSlack;
   v.first = static_cast<long long>(std::floor(v.lo / kSector));
@@ -263,7 +263,7 @@ bool SampleHorizon::covers(const BoxView& v) const {
 
 bool SampleHorizon::hides_point(Vec2 p, double top) const {
   const Vec2 v{p.x - sample_.x, p.y - sample_.y};
-  const double dist = std::hypot(v.x, v.y);
+  const double dist = ground_length(v.x, v.y);
   if (!(dist > 0)) return false;
   const double a = std::atan2(v.y, v.x);
   // A point on a sector border belongs to both sectors: test both.
@@ -415,7 +415,7 @@ void SampleHorizon::add_ring(const geometry::Ring& ring, const geometry::Occlude
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 a = ring[k] - s, b = ring[(k + 1) % n] - s;
     angle_[k + 1] = angle_[k] + wrap_pi(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
-    vertex_distance_[k] = std::sqrt(a.x * a.x + a.y * a.y);  // city scale: no overflow
+    vertex_distance_[k] = ground_length(a.x, a.y);
   }
   const double turn = angle_[n] - angle_[0];
   const bool around = std::abs(turn) > std::numbers::pi;  // winds around s

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -26,6 +27,15 @@
 #include "urbanpvs/preprocess/visibility/OccluderShadow.hpp"
 
 namespace urbanpvs::preprocess {
+
+/// The length of (dx, dy) on the ground, as the sweeps measure it: the square root of the sum of
+/// squares. std::hypot also guards against overflow and underflow, which offsets in a city's
+/// local frame (metres, far below 1e150 and above 1e-150 or exactly 0) never reach, and it was
+/// 5-8 % of a sweep's time in `perf`. Both are within about an ulp of the true length; the
+/// horizons' margins (1e-9 relative) are far wider.
+inline double ground_length(double dx, double dy) {
+  return std::sqrt(dx * dx + dy * dy);
+}
 
 class SampleHorizon {
  public:
