@@ -128,7 +128,10 @@ std::vector<std::pair<std::string, std::string>> bake_properties(const BakeOptio
 BakeOptions bake_options_from_properties(
     const std::vector<std::pair<std::string, std::string>>& properties) {
   PreprocessRequest r;
-  for (const auto& [key, unused] : bake_properties(r.bake)) {
+  for (const auto& property : bake_properties(r.bake)) {
+    // A named reference, not a structured binding: lambdas may capture it in every compiler
+    // the project builds with (clang 14 cannot capture bindings).
+    const std::string& key = property.first;
     const auto stored = std::find_if(properties.begin(), properties.end(),
                                      [&](const auto& p) { return p.first == key; });
     const auto setting = std::find_if(bake_settings().begin(), bake_settings().end(),

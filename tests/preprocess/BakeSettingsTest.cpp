@@ -243,7 +243,8 @@ TEST(BakeSettings, EveryToolReadsCitiesWithTheSameOptions) {
 TEST(BakeSettings, TheFilesPropertiesGiveBackTheBakeOptions) {
   PreprocessRequest r;
   const auto defaults = bake_properties(r.bake);
-  for (const auto& [key, unused] : defaults) {
+  for (const auto& property : defaults) {
+    const std::string& key = property.first;  // lambdas capture it in clang 14 too
     const auto s = std::find_if(bake_settings().begin(), bake_settings().end(),
                                 [&](const Setting& t) { return t.property_key() == key; });
     ASSERT_NE(s, bake_settings().end()) << key;
