@@ -74,7 +74,7 @@ void BakeOptions::validate() const {
         "--solid-step needs TetGen: this build was configured with URBANPVS_TETGEN=OFF");
 }
 
-BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
+BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options, unsigned threads)
     : city_(&city), options_(options) {
   // Walls closer than the block gap are one wall for the cells too: one setting, both stages.
   options_.cells.gap = options_.blocks.gap_tolerance;
@@ -95,7 +95,7 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options)
   // Roof faces above the blocks' levels, with their slopes (thesis 4.2.1, 7.4): not fused, as a
   // face's plane holds only over its own ground.
   for (geometry::Occluder& o :
-       geometry::roof_plane_occluders(city.objects, blocks_, shrink, options_.blocks))
+       geometry::roof_plane_occluders(city.objects, blocks_, shrink, options_.blocks, threads))
     occluders_.push_back(std::move(o));
   // Buildings that are not height fields keep, through the 3D route, what the blocks' prisms
   // cannot hold (thesis 7.3.1). Height fields are left to the blocks: fused with their

@@ -274,7 +274,7 @@ int Run::execute() {
        report_.seconds.read);
 
   start = Clock::now();
-  const BakeScene scene(city_, options_);
+  const BakeScene scene(city_, options_, request_.threads);
   report_.seconds.scene = seconds_since(start);
   report_.blocks = scene.blocks().size();
   report_.occluders = scene.occluders().size();

@@ -219,6 +219,47 @@ TEST(RoofPlaneOccluders, NeverAboveTheErodedRoofOnRandomRoofsAndRows) {
   EXPECT_GT(with_occluders, 30u);
 }
 
+// Blocks are shrunk on several threads (roof_plane_occluders' `threads`): the occluders are the
+// same, in the same order, bit for bit, as on one thread. Twenty rows of houses 100 m apart from
+// each other, so that there are blocks to share out.
+TEST(RoofPlaneOccluders, TheSameOccludersOnAnyNumberOfThreads) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<CityObject> objects;
+  for (int row = 0; row < 20; ++row) {
+    const double angle = 2 * std::numbers::pi * u(rng);
+    double x = 0;
+    for (int k = 0; k < 1 + row % 4; ++k) {
+      House h;
+      h.roof = static_cast<House::Roof>((row + k) % 3);
+      h.w = 10 + 6 * u(rng);
+      h.d = 6 + 4 * u(rng);
+      h.angle = angle;
+      h.eaves = 5 + 10 * u(rng);
+      h.slope = 0.2 + u(rng);
+      h.centre = Vec2{100.0 * (row % 5), 100.0 * (row / 5)} +
+                 Vec2{std::cos(angle), std::sin(angle)} * (x + h.w / 2);
+      x += h.w;
+      objects.push_back(object_of(h, static_cast<std::uint32_t>(objects.size())));
+    }
+  }
+  const std::vector<Block> blocks = build_blocks(objects, {});
+  ASSERT_GE(blocks.size(), 20u);
+  const auto one = roof_plane_occluders(objects, blocks, kEpsilon, {}, 1);
+  ASSERT_GT(one.size(), 40u);
+  for (unsigned threads : {2u, 3u, 8u}) {
+    const auto many = roof_plane_occluders(objects, blocks, kEpsilon, {}, threads);
+    ASSERT_EQ(many.size(), one.size()) << threads << " threads";
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      EXPECT_EQ(many[i].top_z, one[i].top_z) << i;
+      EXPECT_EQ(many[i].slope, one[i].slope) << i;
+      EXPECT_EQ(many[i].origin, one[i].origin) << i;
+      EXPECT_EQ(many[i].shape.outer, one[i].shape.outer) << i;
+      EXPECT_EQ(many[i].shape.holes, one[i].shape.holes) << i;
+    }
+  }
+}
+
 // The real roofs of the 3D BAG tile (LoD2.2: dormers, roof parts that reach down low, faces
 // that are not quite planar), against the file's own surfaces: over q, the lowest non-vertical
 // surface above the ground that a vertical line meets.

@@ -117,7 +117,7 @@ std::vector<std::vector<std::uint32_t>> bake_cells(
     const geometry::City& city, const preprocess::BakeOptions& options,
     const std::vector<std::uint32_t>& cells, unsigned threads,
     const std::function<void(const preprocess::BakeScene&)>& check = {}) {
-  const preprocess::BakeScene scene(city, options);
+  const preprocess::BakeScene scene(city, options, threads);
   if (check) check(scene);
   std::vector<std::unique_ptr<preprocess::CellVisibility>> visibility(threads);
   std::vector<std::vector<std::uint32_t>> out(cells.size());

@@ -29,9 +29,10 @@ inline constexpr std::uint32_t kRoofPlaneBlock = 0xFFFFFFFDu;
 /// The occluders of the roof prisms of the occluding objects of each of `blocks`, shrunk by
 /// `epsilon` (m, > 0). Slivers between faces narrower than options.gap_tolerance close, and
 /// outlines are simplified within options.outline_tolerance, as for the blocks' levels; the
-/// erosion grows by both. Deterministic: blocks in order, faces in object order.
+/// erosion grows by both. Blocks are shrunk on `threads` threads; the result is the same for
+/// any number: blocks in order, faces in object order.
 std::vector<Occluder> roof_plane_occluders(const std::vector<CityObject>& objects,
                                            const std::vector<Block>& blocks, double epsilon,
-                                           const BlockOptions& options);
+                                           const BlockOptions& options, unsigned threads = 1);
 
 }  // namespace urbanpvs::geometry

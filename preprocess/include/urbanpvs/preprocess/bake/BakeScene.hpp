@@ -62,8 +62,10 @@ struct BakeOptions {
 
 class BakeScene {
  public:
-  /// Throws std::invalid_argument for invalid options (geometry errors propagate).
-  BakeScene(const geometry::City& city, const BakeOptions& options);
+  /// Throws std::invalid_argument for invalid options (geometry errors propagate). `threads`
+  /// share the scene's own work (the roof faces' occluders, block by block); the scene is the
+  /// same for any number.
+  BakeScene(const geometry::City& city, const BakeOptions& options, unsigned threads = 1);
 
   const geometry::City& city() const { return *city_; }
   const BakeOptions& options() const { return options_; }
