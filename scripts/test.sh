@@ -45,15 +45,16 @@ if [ "${URBANPVS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # clang: a second compiler's warnings, 40 % less compile time than GCC with the sanitizers
   # on CGAL's templates, and libFuzzer: ctest's runtime.fuzz_loader fuzzes the .pvs loader for
   # a bounded time (20 s; the seed corpus is tests/runtime/fuzz/corpus) under ASan + UBSan.
-  # runtime/README.md says how to fuzz for longer. -O1 -g1: line tables for the reports.
-  CC=clang CXX=clang++ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  # runtime/README.md says how to fuzz for longer. -O1 -g1: line tables for the reports. Its own
+  # folder: CMake keeps the compiler of a folder configured before (by GCC, until 2026-12-05).
+  CC=clang CXX=clang++ cmake -S . -B build/asan-clang -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DURBANPVS_WERROR=ON -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DURBANPVS_SANITIZE=ON \
     -DURBANPVS_TETGEN=ON -DURBANPVS_BUILD_BENCHMARKS=OFF "${lld[@]}"
-  cmake --build build/asan -j"$jobs"
+  cmake --build build/asan-clang -j"$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" \
-    ctest --test-dir build/asan --output-on-failure -j"$jobs" --timeout 1800 -LE slow \
+    ctest --test-dir build/asan-clang --output-on-failure -j"$jobs" --timeout 1800 -LE slow \
     -E "$release_only"
 fi
 
