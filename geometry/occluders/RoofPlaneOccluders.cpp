@@ -2,12 +2,10 @@
 #include "urbanpvs/geometry/occluders/RoofPlaneOccluders.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <thread>
 
 #include "BoundarySimplification.hpp"
+#include "urbanpvs/geometry/ParallelFor.hpp"
 #include "urbanpvs/geometry/city/ConvexClip.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
 #include "urbanpvs/geometry/occluders/PolygonOffset.hpp"
@@ -112,34 +110,17 @@ void shrink_block_roofs(const std::vector<const RoofPrism*>& prisms, double epsi
 std::vector<Occluder> roof_plane_occluders(const std::vector<CityObject>& objects,
                                            const std::vector<Block>& blocks, double epsilon,
                                            const BlockOptions& options, unsigned threads) {
-  // Blocks are independent: each one's occluders go to its own list, taken by whichever thread
-  // is free, and the lists are joined in block order, so the result does not depend on the
-  // threads. CGAL's exact kernel is safe across threads for objects that are not shared.
+  // Blocks are independent: each one's occluders go to its own list and the lists are joined
+  // in block order, so the result does not depend on the threads. CGAL's exact kernel is safe
+  // across threads for objects that are not shared.
   std::vector<std::vector<Occluder>> per_block(blocks.size());
-  // A block that fails keeps its error; the first block's in order is thrown, whatever thread
-  // met it, so the message does not depend on the threads either.
-  std::vector<std::exception_ptr> failed(blocks.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t b = next++; b < blocks.size(); b = next++) {
-      try {
-        std::vector<const RoofPrism*> prisms;
-        for (std::uint32_t index : blocks[b].objects)
-          if (objects[index].occludes)
-            for (const RoofPrism& p : objects[index].roof_prisms) prisms.push_back(&p);
-        if (!prisms.empty()) shrink_block_roofs(prisms, epsilon, options, per_block[b]);
-      } catch (...) {
-        failed[b] = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> helpers;
-  const std::size_t count = std::min<std::size_t>(std::max(threads, 1u), blocks.size());
-  for (std::size_t t = 1; t < count; ++t) helpers.emplace_back(work);
-  work();
-  for (std::thread& t : helpers) t.join();
-  for (const std::exception_ptr& e : failed)
-    if (e) std::rethrow_exception(e);
+  parallel_for(blocks.size(), std::max(threads, 1u), [&](unsigned, std::size_t b) {
+    std::vector<const RoofPrism*> prisms;
+    for (std::uint32_t index : blocks[b].objects)
+      if (objects[index].occludes)
+        for (const RoofPrism& p : objects[index].roof_prisms) prisms.push_back(&p);
+    if (!prisms.empty()) shrink_block_roofs(prisms, epsilon, options, per_block[b]);
+  });
   std::vector<Occluder> out;
   for (std::vector<Occluder>& list : per_block)
     for (Occluder& o : list) out.push_back(std::move(o));

@@ -12,7 +12,10 @@
 #include <filesystem>
 #include <numbers>
 #include <random>
+#include <stdexcept>
+#include <string>
 
+#include "urbanpvs/geometry/ParallelFor.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/RoofPrisms.hpp"
 #include "urbanpvs/geometry/occluders/Blocks.hpp"
@@ -256,6 +259,27 @@ TEST(RoofPlaneOccluders, TheSameOccludersOnAnyNumberOfThreads) {
       EXPECT_EQ(many[i].origin, one[i].origin) << i;
       EXPECT_EQ(many[i].shape.outer, one[i].shape.outer) << i;
       EXPECT_EQ(many[i].shape.holes, one[i].shape.holes) << i;
+    }
+  }
+}
+
+// The helper that shares the blocks out: every index once, and when several calls throw, the
+// lowest index's error whatever the threads (urbanpvs-explain's messages rely on it too).
+TEST(ParallelFor, EveryIndexOnceAndTheLowestFailingIndexsError) {
+  for (unsigned threads : {1u, 2u, 5u}) {
+    std::vector<int> calls(100, 0);
+    parallel_for(calls.size(), threads, [&](unsigned t, std::size_t i) {
+      EXPECT_LT(t, threads);
+      ++calls[i];
+    });
+    EXPECT_EQ(std::count(calls.begin(), calls.end(), 1), 100) << threads << " threads";
+    try {
+      parallel_for(100, threads, [](unsigned, std::size_t i) {
+        if (i == 37 || i == 38 || i == 90) throw std::runtime_error(std::to_string(i));
+      });
+      ADD_FAILURE() << "no exception on " << threads << " threads";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "37") << threads << " threads";
     }
   }
 }

@@ -2,17 +2,14 @@
 #include "urbanpvs/explain/ExcessBreakdown.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <random>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "urbanpvs/geometry/ParallelFor.hpp"
 #include "urbanpvs/preprocess/bake/BakeSettings.hpp"
 #include "urbanpvs/preprocess/visibility/CellVisibility.hpp"
 #include "urbanpvs/validate/RayScene.hpp"
@@ -88,28 +85,7 @@ void check_same_cells(const preprocess::BakeScene& scene, const runtime::PvsFile
   }
 }
 
-// Calls work(thread, i) for every i < n on `threads` threads (the calling one included); the
-// first exception is rethrown once all have stopped. Deterministic when work(·, i) is.
-void parallel_for(std::size_t n, unsigned threads,
-                  const std::function<void(unsigned, std::size_t)>& work) {
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto run = [&](unsigned thread) {
-    try {
-      for (std::size_t i; (i = next++) < n;) work(thread, i);
-    } catch (...) {
-      const std::lock_guard lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = n;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(run, t);
-  run(0);
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
-}
+using geometry::parallel_for;
 
 // The PVS of each of `cells` baked with `options`, one CellVisibility per thread (each owns
 // its renderer). `check` sees the scene first.
