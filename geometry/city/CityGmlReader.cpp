@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "CityReaders.hpp"
+#include "InputReprojection.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 
 namespace urbanpvs::geometry::detail {
@@ -428,11 +429,11 @@ class CityGmlParser {
     doc["version"] = "1.0";
     if (!crs_.empty()) doc["metadata"]["referenceSystem"] = crs_;
     // GML writes coordinates in the axis order of the reference system: latitude first for
-    // EPSG:4326 and EPSG:4979 (OGC:CRS84 is longitude first), where CityJSON has x = longitude.
+    // EPSG:4326, 4979 and the other geographic systems of the EPSG catalogue (JGD2011's 6697 in
+    // Japan's PLATEAU models; OGC:CRS84 is longitude first), where CityJSON has x = longitude.
     if (!crs_.empty() && crs_.find("CRS84") == std::string::npos) {
       try {
-        const std::string c = normalise_crs(crs_, file_);
-        latitude_first_ = c == "EPSG:4326" || c == "EPSG:4979";
+        latitude_first_ = latitude_first(normalise_crs(crs_, file_));
       } catch (const InputError&) {  // the CityJSON reader names an unknown system itself
       }
     }

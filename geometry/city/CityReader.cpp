@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "urbanpvs/geometry/city/CityReader.hpp"
 
-#include <cpl_error.h>
-#include <ogr_spatialref.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -17,6 +14,7 @@
 #include "BoxGrid.hpp"
 #include "CityReaders.hpp"
 #include "GdalHandles.hpp"
+#include "InputReprojection.hpp"
 #include "urbanpvs/geometry/city/DemTerrain.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/occluders/PolygonUnion.hpp"
@@ -73,6 +71,7 @@ std::string normalise_crs(const std::string& name, const std::string& file) {
     if (first.find("EPSG") != std::string::npos) return normalise_crs(first, file);
   }
   if (std::string code = code_after("EPSG"); !code.empty()) return "EPSG:" + code;
+  if (std::string identified = identify_crs(name); !identified.empty()) return identified;
   throw InputError(InputProblem::UnknownCrs, file, "", "cannot interpret \"" + name + "\"");
 }
 
@@ -296,58 +295,31 @@ void place_on_terrain(City& city, const std::vector<bool>& relative) {
         ") lie partly off the terrain: their ground is taken from the terrain under the rest");
 }
 
-// Every stage works in metres: ε, the cell edges, the eye band and the PVS file's frame. A
-// projected system that measures in feet (the US state planes, e.g. EPSG:2263) read as metres
-// would bake a city 3.28 times its size for viewers 0.6 m tall, and a geographic system other
-// than WGS84 lon/lat would be read as metres, and Mercator metres are not metres either: all
-// are refused, saying what to do. Systems PROJ
-// does not know are taken as metres, as the file says nothing else.
-void check_metric(const detail::InputScan& scan, const std::string& name) {
-  if (scan.kind != LocalFrame::Kind::Projected || scan.crs.rfind("EPSG:", 0) != 0) return;
-  const std::string digits = scan.crs.substr(5);
-  if (digits.empty() || digits.size() > 9 ||
-      digits.find_first_not_of("0123456789") != std::string::npos)
-    return;
-  OGRSpatialReference s;
-  CPLPushErrorHandler(CPLQuietErrorHandler);  // an unknown code is no error here
-  const OGRErr known = s.importFromEPSG(std::stoi(digits));
-  CPLPopErrorHandler();
-  if (known != OGRERR_NONE) return;
-  const std::string reproject =
-      "reproject the input to a projected system in metres (ogr2ogr -t_srs, cjio reproject, "
-      "citygml-tools reproject) or to WGS84 lon/lat";
-  if (s.IsGeographic())
-    throw InputError(InputProblem::UnknownCrs, name, "",
-                     scan.crs + " is geographic (degrees) but not WGS84 lon/lat: " + reproject);
-  if (detail::is_mercator(s))
-    throw InputError(InputProblem::UnknownCrs, name, "",
-                     scan.crs +
-                         " is a Mercator projection, whose metres grow with the latitude (twice "
-                         "the true length at 60°): " +
-                         reproject);
-  const char* unit = nullptr;
-  const double metres = s.GetLinearUnits(&unit);
-  if (std::abs(metres - 1) > 1e-9) {
-    char what[200];
-    std::snprintf(what, sizeof what,
-                  " measures in %s (%.7g m), but every setting and the PVS file are in metres: ",
-                  unit != nullptr ? unit : "a unit", metres);
-    throw InputError(InputProblem::UnknownCrs, name, "", scan.crs + what + reproject);
-  }
-}
-
 struct Reader {
   const ReadOptions& options;
   City city;
   std::unique_ptr<LocalFrameMapping> mapping;
   std::vector<bool> relative;  // per object: heights relative to the ground (GeoJSON)
 
-  void add(const Json& doc, const std::string& name) {
+  void add(Json doc, const std::string& name) {
     const Format format = detect(doc, name);
-    const detail::InputScan scan = format == Format::CityJson
-                                       ? detail::scan_cityjson(doc, name)
-                                       : detail::scan_geojson(doc, name, options);
-    check_metric(scan, name);
+    auto scan_of = [&](const Json& d) {
+      return format == Format::CityJson ? detail::scan_cityjson(d, name)
+                                        : detail::scan_geojson(d, name, options);
+    };
+    detail::InputScan scan = scan_of(doc);
+    // Every stage works in metres (ε, the cell edges, the eye band, the PVS file's frame): feet,
+    // Mercator "metres" and degrees on another datum are transformed into WGS84 lon/lat first,
+    // unless the user has said how to read GeoJSON's coordinates (--coordinates).
+    if (format == Format::CityJson || options.coordinates == ReadOptions::Coordinates::Auto)
+      if (std::optional<detail::Reprojection> r = detail::reprojection_for(scan.crs, name)) {
+        if (format == Format::CityJson)
+          detail::reproject_cityjson(doc, *r, name);
+        else
+          detail::reproject_geojson(doc, *r, name);
+        scan = scan_of(doc);
+        scan.note = name + ": " + r->from + " transformed to WGS84 lon/lat";
+      }
     if (!mapping) {
       city.frame = choose_local_frame(scan.kind, scan.crs, scan.bounds);
       city.report.coordinate_note = scan.note;

@@ -240,8 +240,9 @@ failures)
   grep -q 'citygml_mismatched_tag.gml: line 5, column 6: invalid XML: mismatched tag' \
     stderr.txt || fail "the message does not name the line and the problem"
   absent bad.pvs bad.pvs.journal
-  expect 13 "input in feet" -- "$preprocess" "$bad/geojson_crs_in_feet.geojson" -o bad.pvs
-  grep -q 'EPSG:2263 measures in US survey foot' stderr.txt || fail "the message does not say the unit"
+  expect 13 "unknown reference system" -- "$preprocess" "$bad/cityjson_unknown_crs.city.json" -o bad.pvs
+  grep -q 'cityjson_unknown_crs.city.json: unknown coordinate reference system: cannot interpret "https://example.org/crs/MyLocalGrid"' \
+    stderr.txt || fail "the message does not name the file and the system"
   absent bad.pvs bad.pvs.journal
   expect 2 "missing input file" -- "$preprocess" no_such_city.json -o bad.pvs
   expect 2 "no output given" -- "$preprocess" city.city.json
