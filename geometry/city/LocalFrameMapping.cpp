@@ -34,18 +34,23 @@ LocalFrameMapping::~LocalFrameMapping() = default;
 
 Vec3 LocalFrameMapping::to_local(double x, double y, double z) const {
   if (!geodesy_) return {x - frame_.origin[0], y - frame_.origin[1], z - frame_.origin[2]};
+  // East and north of the point's foot on the ellipsoid, not of the point itself: in a tangent
+  // plane the plumb lines of points d apart diverge by d/R, so a 40 m wall 300 m from the
+  // origin would lean 2 mm outwards, and every vertical wall of a 3D model would become a
+  // sliver of roof in plan. The local frame is flat with z the input's height, so a vertical
+  // stays vertical (PvsFile::geodetic_to_local maps the same way).
   double e = 0, n = 0, u = 0;
-  geodesy_->enu.Forward(y, x, z, e, n, u);
+  geodesy_->enu.Forward(y, x, 0, e, n, u);
   return {e, n, z};
 }
 
 Vec3 LocalFrameMapping::to_input(double x, double y, double z) const {
   if (!geodesy_) return {x + frame_.origin[0], y + frame_.origin[1], z + frame_.origin[2]};
-  // Invert the horizontal part at the curvature-corrected height that Forward would produce.
+  // Invert the horizontal part at the ellipsoid, which lies `drop` below the tangent plane.
   double lat = 0, lon = 0, h = 0;
   const double r = std::hypot(x, y);
   const double drop = r * r / (2 * 6371000.0);
-  geodesy_->enu.Reverse(x, y, z - drop, lat, lon, h);
+  geodesy_->enu.Reverse(x, y, -drop, lat, lon, h);
   return {lon, lat, z};
 }
 

@@ -205,8 +205,10 @@ std::array<double, 3> PvsFile::local_to_input(double x, double y, double z) cons
 Status PvsFile::geodetic_to_local(double lat_deg, double lon_deg, double h_m,
                                   std::array<double, 3>& local) const noexcept {
   if (!data_ || !data_->metadata.frame.geographic) return Status::kNotGeographic;
-  const std::array<double, 3> enu = data_->geodetic_frame.forward(lat_deg, lon_deg, h_m);
-  local = input_to_local(enu[0], enu[1], enu[2]);
+  // As the preprocessor maps its input: east and north of the point's foot on the ellipsoid,
+  // and the height as given, so that verticals stay vertical in the flat local frame.
+  const std::array<double, 3> enu = data_->geodetic_frame.forward(lat_deg, lon_deg, 0);
+  local = input_to_local(enu[0], enu[1], h_m);
   return Status::kOk;
 }
 

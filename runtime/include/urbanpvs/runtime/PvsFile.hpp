@@ -149,8 +149,11 @@ class PvsFile {
   std::array<double, 3> input_to_local(double x, double y, double z) const noexcept;
   /// Stored local frame → input coordinates.
   std::array<double, 3> local_to_input(double x, double y, double z) const noexcept;
-  /// WGS84 latitude/longitude (degrees) and ellipsoidal height (m) → local frame, through the
-  /// stored east-north-up frame. kNotGeographic when the input was not geographic.
+  /// WGS84 latitude/longitude (degrees) and height (m) → local frame, as the preprocessor maps
+  /// geographic input: x, y east and north of the point's foot on the ellipsoid in the stored
+  /// east-north-up frame, z the height minus the frame's z origin (the earth's curvature, 8 cm
+  /// at 1 km, is left out so that verticals stay vertical). kNotGeographic when the input was
+  /// not geographic.
   Status geodetic_to_local(double lat_deg, double lon_deg, double h_m,
                            std::array<double, 3>& local) const noexcept;
 

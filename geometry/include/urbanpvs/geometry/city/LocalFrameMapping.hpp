@@ -24,7 +24,9 @@ class LocalFrameMapping {
   LocalFrameMapping& operator=(const LocalFrameMapping&) = delete;
 
   /// Input (x, y, z) -> local. For geographic input x = lon, y = lat (degrees), z = height; the
-  /// local z keeps the input height (the earth's curvature, 8 cm at 1 km, is ignored for z).
+  /// local x, y are east and north of the point's foot on the ellipsoid, and the local z keeps
+  /// the input height (the earth's curvature, 8 cm at 1 km, is ignored), so verticals stay
+  /// vertical.
   Vec3 to_local(double x, double y, double z) const;
   /// Local -> input coordinates (inverse of to_local).
   Vec3 to_input(double x, double y, double z) const;
