@@ -83,6 +83,10 @@ std::string identify_crs(const std::string& name) {
   // for LV95 (PROJ would take the bare datum names for the geographic systems).
   if (name == "CH1903" || name == "CH1903 / LV03") return "EPSG:21781";
   if (name == "CH1903+" || name == "CH1903+ / LV95") return "EPSG:2056";
+  // Only names and codes ("ESRI:102100", "urn:ogc:def:crs:ESRI::102100"), not definitions: a
+  // city file's WKT or PROJ string would be a parser of GDAL's that this reader exposes to
+  // untrusted input for no data set that needs it.
+  if (name.size() > 200 || name.find_first_of("[{(+ ") != std::string::npos) return {};
   OGRSpatialReference s;
   if (!system_of(name, s)) return {};
   const char* authority = s.GetAuthorityName(nullptr);
