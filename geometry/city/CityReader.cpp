@@ -303,6 +303,7 @@ struct Reader {
 
   void add(Json doc, const std::string& name) {
     const Format format = detect(doc, name);
+    if (format == Format::CityJson) detail::expand_geometry_instances(doc, name);
     auto scan_of = [&](const Json& d) {
       return format == Format::CityJson ? detail::scan_cityjson(d, name)
                                         : detail::scan_geojson(d, name, options);

@@ -53,6 +53,12 @@ bool is_xml(std::string_view text);
 /// coordinate list that is no list of 2D or 3D points.
 Json citygml_to_cityjson(std::string_view text, const std::string& file);
 
+/// Replaces every GeometryInstance of a CityJSON document by its template's geometry, placed by
+/// its matrix at its reference vertex, with vertices of its own appended to "vertices"
+/// (GeometryTemplates.cpp). Throws InputError(BadStructure) naming the object for an instance
+/// that names no template, no reference vertex or no matrix of 16 numbers.
+void expand_geometry_instances(Json& doc, const std::string& file);
+
 InputScan scan_cityjson(const Json& doc, const std::string& file);
 void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMapping& mapping,
                    const ReadOptions& options, City& city);
