@@ -17,13 +17,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "CityReaders.hpp"
 #include "GdalHandles.hpp"
+#include "InputReprojection.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 
 namespace urbanpvs::geometry::detail {
@@ -144,41 +144,21 @@ LayerSystem layer_system(OGRLayer& layer, const std::string& path) {
   auto name = [](const char* text) {
     return Json{{"type", "name"}, {"properties", {{"name", text}}}};
   };
-  if (s.IsProjected() && std::abs(s.GetLinearUnits() - 1) < 1e-9 && !is_mercator(s)) {
-    // A system given only as WKT (a GeoPackage's own definition, a MapInfo file) keeps its
-    // EPSG code where PROJ's catalogue matches it with confidence.
-    std::string code;
-    if (const char* a = s.GetAuthorityName(nullptr); a != nullptr && std::strcmp(a, "EPSG") == 0)
-      code = s.GetAuthorityCode(nullptr) != nullptr ? s.GetAuthorityCode(nullptr) : "";
-    if (code.empty()) {
-      if (OGRSpatialReference* match = s.FindBestMatch(90, "EPSG", nullptr)) {
-        const char* a = match->GetAuthorityName(nullptr);
-        const char* c = match->GetAuthorityCode(nullptr);
-        if (a != nullptr && c != nullptr && std::strcmp(a, "EPSG") == 0) code = c;
-        match->Release();
-      }
-    }
-    if (!code.empty()) {
-      out.crs = name(("EPSG:" + code).c_str());
+  // A system given only as WKT (a GeoPackage's own definition, a MapInfo file) keeps its EPSG
+  // code where PROJ's catalogue matches it with confidence.
+  if (is_metric_projection(s))
+    if (const std::string code = authority_code(s); code.rfind("EPSG:", 0) == 0) {
+      out.crs = name(code.c_str());
       return out;
     }
-  }
   OGRSpatialReference wgs84;
   wgs84.SetWellKnownGeogCS("WGS84");
   wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   out.crs = name("urn:ogc:def:crs:OGC:1.3:CRS84");
   if (s.IsGeographic() && s.IsSame(&wgs84)) return out;
-  out.to_wgs84.reset(OGRCreateCoordinateTransformation(&s, &wgs84));
-  if (!out.to_wgs84)
-    throw InputError(InputProblem::UnknownCrs, path, layer.GetName(),
-                     "cannot transform " + crs_name(s) + " to WGS84" + QuietGdal::last());
-  const char* unit = nullptr;
-  if (s.IsProjected()) s.GetLinearUnits(&unit);
-  out.note = path + ": " + crs_name(s) +
-             (is_mercator(s)                       ? std::string(" (Mercator)")
-              : unit != nullptr && s.IsProjected() ? std::string(" (in ") + unit + ")"
-                                                   : std::string()) +
-             " transformed to WGS84 lon/lat";
+  Reprojection r = reprojection_from(s, crs_name(s), path, layer.GetName());
+  out.to_wgs84 = std::move(r.to_wgs84);
+  out.note = path + ": " + r.from + " transformed to WGS84 lon/lat";
   return out;
 }
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "GdalHandles.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
@@ -88,11 +89,18 @@ std::string identify_crs(const std::string& name) {
   // untrusted input for no data set that needs it.
   if (name.size() > 200 || name.find_first_of("[{(+ ") != std::string::npos) return {};
   OGRSpatialReference s;
-  if (!system_of(name, s)) return {};
+  return system_of(name, s) ? authority_code(s) : std::string();
+}
+
+bool is_metric_projection(const OGRSpatialReference& s) {
+  return s.IsProjected() && std::abs(s.GetLinearUnits() - 1) < 1e-9 && !is_mercator(s);
+}
+
+std::string authority_code(const OGRSpatialReference& s) {
   const char* authority = s.GetAuthorityName(nullptr);
   const char* code = s.GetAuthorityCode(nullptr);
-  if (authority != nullptr && code != nullptr && std::string(authority) == "EPSG")
-    return std::string("EPSG:") + code;
+  const bool own = authority != nullptr && code != nullptr;
+  if (own && std::string(authority) == "EPSG") return std::string("EPSG:") + code;
   const QuietGdal quiet;
   if (OGRSpatialReference* match = s.FindBestMatch(90, "EPSG", nullptr)) {
     const char* a = match->GetAuthorityName(nullptr);
@@ -101,27 +109,22 @@ std::string identify_crs(const std::string& name) {
     match->Release();
     if (!found.empty()) return found;
   }
-  return authority != nullptr && code != nullptr ? std::string(authority) + ":" + code
-                                                 : std::string();
+  return own ? std::string(authority) + ":" + code : std::string();
 }
 
-std::optional<Reprojection> reprojection_for(const std::string& crs, const std::string& file) {
-  if (crs.empty() || is_geographic_crs(crs)) return std::nullopt;
-  OGRSpatialReference s;
-  // A system PROJ does not know is taken as metres, as the file says nothing else.
-  if (!system_of(crs, s)) return std::nullopt;
-  const char* unit = nullptr;
-  const double metres = s.IsProjected() ? s.GetLinearUnits(&unit) : 1;
-  if (s.IsProjected() && std::abs(metres - 1) < 1e-9 && !is_mercator(s)) return std::nullopt;
+Reprojection reprojection_from(const OGRSpatialReference& s, const std::string& name,
+                               const std::string& file, const std::string& object) {
   if (!s.IsProjected() && !s.IsGeographic())
-    throw InputError(InputProblem::UnknownCrs, file, "",
-                     crs +
+    throw InputError(InputProblem::UnknownCrs, file, object,
+                     name +
                          " is neither a map projection nor longitude and latitude: reproject "
                          "the input to a projected system in metres or to WGS84 lon/lat");
   Reprojection r;
-  r.from = crs + (s.IsGeographic() ? " (degrees)"
-                  : is_mercator(s) ? " (Mercator)"
-                                   : " (in " + std::string(unit != nullptr ? unit : "?") + ")");
+  const char* unit = nullptr;
+  const double metres = s.IsProjected() ? s.GetLinearUnits(&unit) : 1;
+  r.from = name + (s.IsGeographic() ? " (degrees)"
+                   : is_mercator(s) ? " (Mercator)"
+                                    : " (in " + std::string(unit != nullptr ? unit : "?") + ")");
   // A projection in feet gives its heights in feet too (the state planes' own vertical data
   // does, and a file names one system for all three axes).
   r.z_to_metres = metres;
@@ -131,9 +134,17 @@ std::optional<Reprojection> reprojection_for(const std::string& crs, const std::
   const QuietGdal quiet;
   r.to_wgs84.reset(OGRCreateCoordinateTransformation(&s, &wgs84));
   if (!r.to_wgs84)
-    throw InputError(InputProblem::UnknownCrs, file, "",
+    throw InputError(InputProblem::UnknownCrs, file, object,
                      "cannot transform " + r.from + " to WGS84 lon/lat" + QuietGdal::last());
   return r;
+}
+
+std::optional<Reprojection> reprojection_for(const std::string& crs, const std::string& file) {
+  if (crs.empty() || is_geographic_crs(crs)) return std::nullopt;
+  OGRSpatialReference s;
+  // A system PROJ does not know is taken as metres, as the file says nothing else.
+  if (!system_of(crs, s) || is_metric_projection(s)) return std::nullopt;
+  return reprojection_from(s, crs, file, "");
 }
 
 bool latitude_first(const std::string& crs) {

@@ -18,6 +18,21 @@ struct Reprojection {
   std::string from;        ///< "EPSG:2263 (in US survey foot)", for the reading's note
 };
 
+/// True when coordinates in `s` are metres as they stand: a projection in metres that is no
+/// Mercator. Everything else a reader transforms with reprojection_from.
+bool is_metric_projection(const OGRSpatialReference& s);
+
+/// "EPSG:n" where `s` names that code or PROJ's catalogue matches it with confidence (a system
+/// given as WKT only), else its own authority and code ("ESRI:102100"); "" when it has neither.
+std::string authority_code(const OGRSpatialReference& s);
+
+/// The transformation from `s` into WGS84 lon/lat, for coordinates that are not metres
+/// (is_metric_projection false). `name` is how the reading's note names `s`. Throws
+/// InputError(UnknownCrs) naming `file` and `object` for a system that is neither projected nor
+/// geographic, or one PROJ cannot transform.
+Reprojection reprojection_from(const OGRSpatialReference& s, const std::string& name,
+                               const std::string& file, const std::string& object);
+
 /// A reference system's name that is no EPSG URL, URN or code: Swiss "CH1903" and "CH1903+"
 /// (the LV03 and LV95 grids), else as GDAL identifies it without reading files or the network:
 /// "EPSG:n" where the EPSG catalogue holds it, else its own authority and code ("ESRI:102100",
