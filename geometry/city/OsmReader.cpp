@@ -15,9 +15,12 @@
 #include <osmium/area/multipolygon_manager.hpp>
 #include <osmium/area/problem_reporter_stream.hpp>
 #include <osmium/handler.hpp>
+#include <osmium/handler/check_order.hpp>
 #include <osmium/handler/node_locations_for_ways.hpp>
 #include <osmium/index/map/flex_mem.hpp>
 #include <osmium/io/any_input.hpp>
+#include <osmium/object_pointer_collection.hpp>
+#include <osmium/osm/object_comparisons.hpp>
 #include <osmium/relations/manager_util.hpp>
 #include <osmium/tags/tags_filter.hpp>
 #include <osmium/visitor.hpp>
@@ -177,41 +180,93 @@ bool is_osm_file(const std::string& path) {
   return false;
 }
 
+namespace {
+
+// The file's objects sorted as OSM files are (nodes, ways, relations, each by ascending id),
+// each id once at its newest version. Overpass API exports are ordered by type and then by
+// location ("out qt"), or give the ways before their nodes ("out body; >; out skel qt;"), and
+// a file merged from several extracts repeats ids: osmium's multipolygon assembly needs the
+// order (its second pass checks it), the node locations need the nodes before the ways.
+struct SortedObjects {
+  osmium::memory::Buffer buffer;  // holds the objects the collection points to
+  osmium::ObjectPointerCollection objects;
+
+  explicit SortedObjects(const osmium::io::File& input)
+      : buffer(osmium::io::read_file(input, osmium::io::read_meta::yes)) {
+    osmium::apply(buffer, objects);
+    objects.sort(osmium::object_order_type_id_reverse_version{});  // newest version first
+    objects.unique(osmium::object_equal_type_id{});                // keeps the first
+  }
+};
+
+// Both of the assembly's passes over the file, or over `sorted` when given: the relations
+// first (which ways they need), then every object.
+void assemble(const osmium::io::File& input, SortedObjects* sorted, Json& features, Json& streets,
+              ReadReport& report, std::ostringstream& problems, const std::string& path) {
+  osmium::area::ProblemReporterStream reporter(problems);
+  osmium::area::Assembler::config_type config;
+  config.problem_reporter = &reporter;
+  // Buildings and their parts ("building=no" is no building), and street areas.
+  osmium::TagsFilter wanted(false);
+  wanted.add_rule(false, "building", "no");
+  wanted.add_rule(true, "building");
+  wanted.add_rule(false, "building:part", "no");
+  wanted.add_rule(true, "building:part");
+  wanted.add_rule(true, "area:highway");
+  wanted.add_rule(true, "highway", "pedestrian");
+  wanted.add_rule(true, "place", "square");
+  osmium::area::MultipolygonManager<osmium::area::Assembler> areas(config, wanted);
+  if (sorted == nullptr) {
+    osmium::relations::read_relations(input, areas);  // pass 1: which ways the relations need
+  } else {
+    for (const osmium::OSMObject& o : sorted->objects)
+      if (o.type() == osmium::item_type::relation)
+        areas.relation(static_cast<const osmium::Relation&>(o));
+    areas.prepare_for_lookup();
+  }
+
+  using Index = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
+  Index index;
+  osmium::handler::NodeLocationsForWays<Index> locations(index);
+  locations.ignore_errors();  // a way leaving the extract: its rings are skipped, reported
+  AreaFeatures collect(features, streets, report, path);
+  auto assembled =
+      areas.handler([&](osmium::memory::Buffer&& buffer) { osmium::apply(buffer, collect); });
+  if (sorted == nullptr) {
+    osmium::io::Reader reader(input, osmium::io::read_meta::no);
+    osmium::apply(reader, locations, collect, assembled);
+    reader.close();
+  } else {
+    osmium::apply(sorted->objects.begin(), sorted->objects.end(), locations, collect, assembled);
+  }
+  areas.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& r) {
+    report.warnings.push_back(path + ": r" + std::to_string(r->id()) +
+                              ": multipolygon with members outside the extract; skipped");
+  });
+}
+
+}  // namespace
+
 Json read_osm(const std::string& path, ReadReport& report) {
   open_input_file(path);  // the project's own messages for a missing or unreadable file
   Json features = Json::array(), streets = Json::array();
   std::ostringstream problems;
   try {
     const osmium::io::File input(path);
-    osmium::area::ProblemReporterStream reporter(problems);
-    osmium::area::Assembler::config_type config;
-    config.problem_reporter = &reporter;
-    // Buildings and their parts ("building=no" is no building), and street areas.
-    osmium::TagsFilter wanted(false);
-    wanted.add_rule(false, "building", "no");
-    wanted.add_rule(true, "building");
-    wanted.add_rule(false, "building:part", "no");
-    wanted.add_rule(true, "building:part");
-    wanted.add_rule(true, "area:highway");
-    wanted.add_rule(true, "highway", "pedestrian");
-    wanted.add_rule(true, "place", "square");
-    osmium::area::MultipolygonManager<osmium::area::Assembler> areas(config, wanted);
-    osmium::relations::read_relations(input, areas);  // pass 1: which ways the relations need
-
-    using Index = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
-    Index index;
-    osmium::handler::NodeLocationsForWays<Index> locations(index);
-    locations.ignore_errors();  // a way leaving the extract: its rings are skipped, reported
-    AreaFeatures collect(features, streets, report, path);
-    osmium::io::Reader reader(input, osmium::io::read_meta::no);
-    osmium::apply(reader, locations, collect, areas.handler([&](osmium::memory::Buffer&& buffer) {
-      osmium::apply(buffer, collect);
-    }));
-    reader.close();
-    areas.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& r) {
-      report.warnings.push_back(path + ": r" + std::to_string(r->id()) +
-                                ": multipolygon with members outside the extract; skipped");
-    });
+    const ReadReport before = report;
+    try {
+      assemble(input, nullptr, features, streets, report, problems, path);
+    } catch (const osmium::out_of_order_error&) {
+      // Streaming needs sorted input; anything else is read whole and sorted, from scratch.
+      features = Json::array(), streets = Json::array();
+      problems.str("");
+      report = before;
+      SortedObjects sorted(input);
+      report.warnings.push_back(path +
+                                ": objects not sorted by type and id (an Overpass API export?) "
+                                "or repeated: read whole into memory and sorted");
+      assemble(input, &sorted, features, streets, report, problems, path);
+    }
   } catch (const std::exception& e) {
     throw InputError(InputProblem::BadStructure, path, "",
                      std::string("not a readable OpenStreetMap file: ") + e.what());

@@ -64,44 +64,65 @@ std::string member(int way_id, const char* role) {
          "\"/>\n";
 }
 
-// Elements in the order OSM files have (nodes, ways, relations; ascending ids), which osmium
-// requires.
-std::string sample_osm() {
-  std::string s = "<?xml version=\"1.0\"?>\n<osm version=\"0.6\" generator=\"test\">\n";
+// How the elements of sample_osm() are ordered.
+enum class Order {
+  Sorted,  ///< as OSM files are: nodes, ways, relations, each by ascending id
+  /// as Overpass API exports are ("out body; >; out skel qt;"): the ways before their nodes,
+  /// and each kind in an order of its own (here descending ids); one node also comes twice,
+  /// its older version misplaced by 1 km
+  Overpass,
+};
+
+std::string sample_osm(Order order = Order::Sorted) {
+  std::string nodes, s;
   for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 12; ++j) s += node(i, j);
+    for (int j = 0; j < 12; ++j)
+      nodes = order == Order::Sorted ? nodes + node(i, j) : node(i, j) + nodes;
+  if (order == Order::Overpass)
+    nodes += "  <node id=\"1000\" version=\"0\" lat=\"60.18\" lon=\"24.94\"/>\n";
+  std::vector<std::string> ways, relations;
+  auto add = [](std::vector<std::string>& to, std::string element) {
+    to.push_back(std::move(element));
+  };
   // A building with a height in metres and a unit.
-  s += way(1, {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}},
-           tag("building", "yes") + tag("height", "12 m") + tag("ref:tile", "tiles/7"));
+  add(ways, way(1, {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}},
+                tag("building", "yes") + tag("height", "12 m") + tag("ref:tile", "tiles/7")));
   // Height from levels: 4 x 3 m.
-  s += way(2, {{2, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 0}},
-           tag("building", "apartments") + tag("building:levels", "4"));
+  add(ways, way(2, {{2, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 0}},
+                tag("building", "apartments") + tag("building:levels", "4")));
   // Not a building.
-  s += way(3, {{4, 0}, {5, 0}, {5, 1}, {4, 1}, {4, 0}}, tag("building", "no"));
+  add(ways, way(3, {{4, 0}, {5, 0}, {5, 1}, {4, 1}, {4, 0}}, tag("building", "no")));
   // A building with a part of it standing higher.
-  s +=
-      way(4, {{6, 0}, {9, 0}, {9, 2}, {6, 2}, {6, 0}}, tag("building", "yes") + tag("height", "9"));
-  s += way(5, {{7, 0}, {8, 0}, {8, 1}, {7, 1}, {7, 0}},
-           tag("building:part", "yes") + tag("height", "30") + tag("ref:tile", "part-only"));
+  add(ways, way(4, {{6, 0}, {9, 0}, {9, 2}, {6, 2}, {6, 0}},
+                tag("building", "yes") + tag("height", "9")));
+  add(ways, way(5, {{7, 0}, {8, 0}, {8, 1}, {7, 1}, {7, 0}},
+                tag("building:part", "yes") + tag("height", "30") + tag("ref:tile", "part-only")));
   // The outer and inner ways of a courtyard multipolygon (tags on the relation).
-  s += way(10, {{0, 3}, {4, 3}, {4, 7}, {0, 7}, {0, 3}}, "");
-  s += way(11, {{1, 4}, {1, 6}, {3, 6}, {3, 4}, {1, 4}}, "");
+  add(ways, way(10, {{0, 3}, {4, 3}, {4, 7}, {0, 7}, {0, 3}}, ""));
+  add(ways, way(11, {{1, 4}, {1, 6}, {3, 6}, {3, 4}, {1, 4}}, ""));
   // The only outer way of a multipolygon, not closed: osmium cannot assemble it.
-  s += way(12, {{6, 4}, {8, 4}, {8, 6}, {6, 6}}, "");
+  add(ways, way(12, {{6, 4}, {8, 4}, {8, 6}, {6, 6}}, ""));
   // Streets: a residential street 8 m wide, a footway of its class's width (3 m), a street
   // under construction (no street yet) and a pedestrian zone mapped as an area.
-  s += way(30, {{0, 8}, {9, 8}}, tag("highway", "residential") + tag("width", "8 m"));
-  s += way(31, {{0, 9}, {3, 9}}, tag("highway", "footway"));
-  s += way(32, {{5, 9}, {9, 9}}, tag("highway", "construction"));
-  s += way(33, {{5, 10}, {7, 10}, {7, 11}, {5, 11}, {5, 10}},
-           tag("highway", "pedestrian") + tag("area", "yes"));
+  add(ways, way(30, {{0, 8}, {9, 8}}, tag("highway", "residential") + tag("width", "8 m")));
+  add(ways, way(31, {{0, 9}, {3, 9}}, tag("highway", "footway")));
+  add(ways, way(32, {{5, 9}, {9, 9}}, tag("highway", "construction")));
+  add(ways, way(33, {{5, 10}, {7, 10}, {7, 11}, {5, 11}, {5, 10}},
+                tag("highway", "pedestrian") + tag("area", "yes")));
   const std::string mp = tag("type", "multipolygon") + tag("building", "yes");
-  s += relation(20, member(10, "outer") + member(11, "inner"),
-                mp + tag("height", "20") + tag("ref:tile", "court"));
-  s += relation(21, member(12, "outer"), mp);
+  add(relations, relation(20, member(10, "outer") + member(11, "inner"),
+                          mp + tag("height", "20") + tag("ref:tile", "court")));
+  add(relations, relation(21, member(12, "outer"), mp));
   // A member way outside the extract.
-  s += relation(22, member(999, "outer"), mp);
-  return s + "</osm>\n";
+  add(relations, relation(22, member(999, "outer"), mp));
+  if (order == Order::Overpass) {
+    std::reverse(ways.begin(), ways.end());
+    std::reverse(relations.begin(), relations.end());
+  }
+  for (const std::string& w : ways) s += w;
+  s = order == Order::Overpass ? s + nodes : nodes + s;
+  for (const std::string& r : relations) s += r;
+  return "<?xml version=\"1.0\"?>\n<osm version=\"0.6\" generator=\"test\">\n" + s + "</osm>\n";
 }
 
 const CityObject* find(const City& c, const std::string& id) {
@@ -143,6 +164,40 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
   EXPECT_TRUE(mentions(city.report.warnings, "r21", "")) << "unclosed ring of r21";
   EXPECT_TRUE(mentions(city.report.warnings, "r22", "outside the extract"));
   fs::remove(path);
+}
+
+// An Overpass API export is read as the same data sorted: every building, part, multipolygon
+// and street the same, the newest version of a node that comes twice, and a warning.
+TEST(OsmReader, UnsortedOverpassExportGivesTheCityOfTheSortedFile) {
+  const std::string sorted_path = write_temp("sorted.osm", sample_osm());
+  const std::string overpass_path = write_temp("overpass.osm", sample_osm(Order::Overpass));
+  ReadOptions options;
+  options.default_height = 10;
+  const City sorted = read_city({sorted_path}, options);
+  const City overpass = read_city({overpass_path}, options);
+  ASSERT_EQ(overpass.objects.size(), sorted.objects.size());
+  EXPECT_EQ(overpass.frame.origin_lat, sorted.frame.origin_lat);
+  EXPECT_EQ(overpass.frame.origin_lon, sorted.frame.origin_lon);
+  for (const CityObject& o : sorted.objects) {
+    const CityObject* same = find(overpass, o.source_id);
+    ASSERT_NE(same, nullptr) << o.source_id;
+    EXPECT_EQ(same->bbox.zmax, o.bbox.zmax) << o.source_id;
+    ASSERT_EQ(same->footprint.size(), o.footprint.size()) << o.source_id;
+    for (std::size_t k = 0; k < o.footprint.size(); ++k)
+      EXPECT_EQ(area(same->footprint[k]), area(o.footprint[k])) << o.source_id;
+    EXPECT_EQ(same->bbox.xy.min.x, o.bbox.xy.min.x) << o.source_id;
+    EXPECT_EQ(same->bbox.xy.max.y, o.bbox.xy.max.y) << o.source_id;
+  }
+  EXPECT_EQ(overpass.streets.lines.size(), sorted.streets.lines.size());
+  EXPECT_EQ(overpass.streets.areas.size(), sorted.streets.areas.size());
+  EXPECT_TRUE(mentions(overpass.report.warnings, overpass_path, "not sorted by type and id"));
+  EXPECT_FALSE(mentions(sorted.report.warnings, sorted_path, "not sorted"));
+  // The assembly's own reports are there once, not twice (the streaming attempt is dropped).
+  EXPECT_EQ(std::count_if(overpass.report.warnings.begin(), overpass.report.warnings.end(),
+                          [](const std::string& w) { return w.find("r22") != std::string::npos; }),
+            1);
+  fs::remove(sorted_path);
+  fs::remove(overpass_path);
 }
 
 TEST(OsmReader, PayloadIsTheNamedTagOfTheBuilding) {
