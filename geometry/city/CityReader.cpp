@@ -157,10 +157,19 @@ Json parse(std::string_view text, const std::string& name) {
   }
 }
 
+// A text file's city: CityGML, CityJSON (or a sequence of it), GeoJSON, or OpenStreetMap data
+// from the Overpass API in JSON, which the OSM reader's assembly takes (OverpassJson.cpp).
+Json parse_city(std::string_view text, const std::string& name, ReadReport& report) {
+  Json doc = parse(text, name);
+  if (detail::is_overpass_json(doc)) return detail::read_overpass_json(doc, name, report);
+  return doc;
+}
+
 Format detect(const Json& doc, const std::string& name) {
   if (!doc.is_object() || !doc.contains("type") || !doc["type"].is_string())
     throw InputError(InputProblem::UnsupportedFormat, name, "",
-                     "neither CityJSON nor GeoJSON (no top-level \"type\")");
+                     "neither CityJSON, GeoJSON nor Overpass JSON (no top-level \"type\" or "
+                     "\"elements\")");
   const std::string type = doc["type"].get<std::string>();
   if (type == "CityJSON") return Format::CityJson;
   if (type == "FeatureCollection" || type == "Feature") return Format::GeoJson;
@@ -409,14 +418,14 @@ City read_city(const std::vector<std::string>& paths, const ReadOptions& options
     reader.add(detail::is_osm_file(p) ? detail::read_osm(p, reader.city.report)
                : detail::is_gis_vector_file(p)
                    ? detail::read_gis_vector(p, options, reader.city.report)
-                   : parse(detail::read_input_file(p), p),
+                   : parse_city(detail::read_input_file(p), p, reader.city.report),
                p);
   return reader.finish(paths.back());
 }
 
 City read_city_text(std::string_view text, const std::string& name, const ReadOptions& options) {
   Reader reader{options, {}, {}, {}};
-  reader.add(parse(text, name), name);
+  reader.add(parse_city(text, name, reader.city.report), name);
   return reader.finish(name);
 }
 

@@ -13,6 +13,10 @@
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
 
+namespace osmium::memory {
+class Buffer;
+}  // namespace osmium::memory
+
 namespace urbanpvs::geometry::detail {
 
 // ordered_json keeps the file's order, which makes object indices follow the input.
@@ -89,6 +93,18 @@ bool is_osm_file(const std::string& path);
 /// lon/lat (OsmReader.cpp): ids "w123" / "r456", tags as properties. Assembly problems (broken
 /// multipolygons, members outside the extract) go to report.warnings, per element id.
 Json read_osm(const std::string& path, ReadReport& report);
+/// OpenStreetMap objects already read (Overpass JSON), in any order and with ids repeated,
+/// as read_osm gives them: sorted, each id at its newest version, assembled. Problems are
+/// reported naming `file`.
+Json assemble_osm(osmium::memory::Buffer&& objects, const std::string& file, ReadReport& report);
+
+/// True for an Overpass API JSON document (`[out:json]`): an object with an "elements" array
+/// and no GeoJSON or CityJSON "type".
+bool is_overpass_json(const Json& doc);
+/// An Overpass API JSON document's buildings as read_osm gives them (OverpassJson.cpp): nodes,
+/// ways and relations as the API writes them with "out body", "out skel" or "out geom" (way and
+/// member geometries inline). Throws InputError(BadStructure) naming the element at fault.
+Json read_overpass_json(const Json& doc, const std::string& file, ReadReport& report);
 
 /// True for the names of the GIS vector files read through GDAL (.shp, .shz, .shp.zip, .gpkg,
 /// .fgb, .tab, .sqlite), whatever their case.

@@ -191,17 +191,16 @@ struct SortedObjects {
   osmium::memory::Buffer buffer;  // holds the objects the collection points to
   osmium::ObjectPointerCollection objects;
 
-  explicit SortedObjects(const osmium::io::File& input)
-      : buffer(osmium::io::read_file(input, osmium::io::read_meta::yes)) {
+  explicit SortedObjects(osmium::memory::Buffer&& objects_read) : buffer(std::move(objects_read)) {
     osmium::apply(buffer, objects);
     objects.sort(osmium::object_order_type_id_reverse_version{});  // newest version first
     objects.unique(osmium::object_equal_type_id{});                // keeps the first
   }
 };
 
-// Both of the assembly's passes over the file, or over `sorted` when given: the relations
-// first (which ways they need), then every object.
-void assemble(const osmium::io::File& input, SortedObjects* sorted, Json& features, Json& streets,
+// Both of the assembly's passes over the file `input`, or over `sorted` when given: the
+// relations first (which ways they need), then every object.
+void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& features, Json& streets,
               ReadReport& report, std::ostringstream& problems, const std::string& path) {
   osmium::area::ProblemReporterStream reporter(problems);
   osmium::area::Assembler::config_type config;
@@ -217,7 +216,7 @@ void assemble(const osmium::io::File& input, SortedObjects* sorted, Json& featur
   wanted.add_rule(true, "place", "square");
   osmium::area::MultipolygonManager<osmium::area::Assembler> areas(config, wanted);
   if (sorted == nullptr) {
-    osmium::relations::read_relations(input, areas);  // pass 1: which ways the relations need
+    osmium::relations::read_relations(*input, areas);  // pass 1: which ways the relations need
   } else {
     for (const osmium::OSMObject& o : sorted->objects)
       if (o.type() == osmium::item_type::relation)
@@ -233,7 +232,7 @@ void assemble(const osmium::io::File& input, SortedObjects* sorted, Json& featur
   auto assembled =
       areas.handler([&](osmium::memory::Buffer&& buffer) { osmium::apply(buffer, collect); });
   if (sorted == nullptr) {
-    osmium::io::Reader reader(input, osmium::io::read_meta::no);
+    osmium::io::Reader reader(*input, osmium::io::read_meta::no);
     osmium::apply(reader, locations, collect, assembled);
     reader.close();
   } else {
@@ -243,6 +242,14 @@ void assemble(const osmium::io::File& input, SortedObjects* sorted, Json& featur
     report.warnings.push_back(path + ": r" + std::to_string(r->id()) +
                               ": multipolygon with members outside the extract; skipped");
   });
+}
+
+Json osm_document(Json features, Json streets) {
+  Json doc = Json::object();
+  doc["type"] = "FeatureCollection";
+  doc["features"] = std::move(features);
+  doc[kStreetsMember] = std::move(streets);
+  return doc;
 }
 
 }  // namespace
@@ -255,28 +262,33 @@ Json read_osm(const std::string& path, ReadReport& report) {
     const osmium::io::File input(path);
     const ReadReport before = report;
     try {
-      assemble(input, nullptr, features, streets, report, problems, path);
+      assemble(&input, nullptr, features, streets, report, problems, path);
     } catch (const osmium::out_of_order_error&) {
       // Streaming needs sorted input; anything else is read whole and sorted, from scratch.
       features = Json::array(), streets = Json::array();
       problems.str("");
       report = before;
-      SortedObjects sorted(input);
+      SortedObjects sorted(osmium::io::read_file(input, osmium::io::read_meta::yes));
       report.warnings.push_back(path +
                                 ": objects not sorted by type and id (an Overpass API export?) "
                                 "or repeated: read whole into memory and sorted");
-      assemble(input, &sorted, features, streets, report, problems, path);
+      assemble(nullptr, &sorted, features, streets, report, problems, path);
     }
   } catch (const std::exception& e) {
     throw InputError(InputProblem::BadStructure, path, "",
                      std::string("not a readable OpenStreetMap file: ") + e.what());
   }
   report_lines(problems.str(), path, report);
-  Json doc = Json::object();
-  doc["type"] = "FeatureCollection";
-  doc["features"] = std::move(features);
-  doc[kStreetsMember] = std::move(streets);
-  return doc;
+  return osm_document(std::move(features), std::move(streets));
+}
+
+Json assemble_osm(osmium::memory::Buffer&& objects, const std::string& file, ReadReport& report) {
+  Json features = Json::array(), streets = Json::array();
+  std::ostringstream problems;
+  SortedObjects sorted(std::move(objects));
+  assemble(nullptr, &sorted, features, streets, report, problems, file);
+  report_lines(problems.str(), file, report);
+  return osm_document(std::move(features), std::move(streets));
 }
 
 }  // namespace urbanpvs::geometry::detail

@@ -10,7 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <numbers>
+#include <osmium/io/xml_input.hpp>
+#include <osmium/osm.hpp>
+#include <set>
 #include <string>
 
 #include "SharedCities.hpp"
@@ -198,6 +202,123 @@ TEST(OsmReader, UnsortedOverpassExportGivesTheCityOfTheSortedFile) {
             1);
   fs::remove(sorted_path);
   fs::remove(overpass_path);
+}
+
+// The OSM XML file at `osm_path` written as the Overpass API writes JSON, by osmium's reading of
+// it. `geometry`: as "out geom" gives it: no node elements, each way with the "geometry" of its
+// nodes, and the untagged ways that only relations use given inside them by their geometry alone.
+std::string overpass_json(const std::string& osm_path, bool geometry) {
+  using nlohmann::json;
+  const osmium::memory::Buffer buffer = osmium::io::read_file(osm_path);
+  std::map<osmium::object_id_type, json> at;  // node id -> {"lat", "lon"}
+  for (const auto& n : buffer.select<osmium::Node>())
+    at[n.id()] = {{"lat", n.location().lat()}, {"lon", n.location().lon()}};
+  auto tags = [](const osmium::OSMObject& o) {
+    json t = json::object();
+    for (const osmium::Tag& tag : o.tags()) t[tag.key()] = tag.value();
+    return t;
+  };
+  auto way_geometry = [&](const osmium::Way& w) {
+    json g = json::array();
+    for (const osmium::NodeRef& r : w.nodes())
+      g.push_back(at.count(r.ref()) ? at[r.ref()] : json());
+    return g;
+  };
+  std::map<osmium::object_id_type, const osmium::Way*> ways;
+  for (const auto& w : buffer.select<osmium::Way>()) ways[w.id()] = &w;
+  std::set<osmium::object_id_type> only_in_relations;
+  json elements = json::array();
+  for (const auto& o : buffer.select<osmium::OSMObject>()) {
+    json e = {{"type", osmium::item_type_to_name(o.type())}, {"id", o.id()}};
+    if (!o.tags().empty()) e["tags"] = tags(o);
+    if (o.type() == osmium::item_type::node) {
+      if (geometry) continue;
+      const auto& n = static_cast<const osmium::Node&>(o);
+      e["lat"] = n.location().lat();
+      e["lon"] = n.location().lon();
+    } else if (o.type() == osmium::item_type::way) {
+      const auto& w = static_cast<const osmium::Way&>(o);
+      if (geometry && w.tags().empty()) {
+        only_in_relations.insert(w.id());
+        continue;
+      }
+      e["nodes"] = json::array();
+      for (const osmium::NodeRef& r : w.nodes()) e["nodes"].push_back(r.ref());
+      if (geometry) e["geometry"] = way_geometry(w);
+    } else {
+      e["members"] = json::array();
+      for (const osmium::RelationMember& m : static_cast<const osmium::Relation&>(o).members()) {
+        json member = {
+            {"type", osmium::item_type_to_name(m.type())}, {"ref", m.ref()}, {"role", m.role()}};
+        if (geometry && only_in_relations.count(m.ref()) && ways.count(m.ref()))
+          member["geometry"] = way_geometry(*ways[m.ref()]);
+        e["members"].push_back(std::move(member));
+      }
+    }
+    elements.push_back(std::move(e));
+  }
+  return json{{"version", 0.6}, {"generator", "Overpass API"}, {"elements", elements}}.dump(1);
+}
+
+// Overpass JSON, with nodes ("out body; >; out skel qt;") or with geometry inline ("out
+// geom"), gives the city of the same data as an OSM file: every building, part, multipolygon
+// and street, the same footprints and heights, and the same problems.
+TEST(OsmReader, OverpassJsonGivesTheCityOfTheOsmFile) {
+  const std::string osm_path = write_temp("overpass_source.osm", sample_osm());
+  ReadOptions options;
+  options.default_height = 10;
+  const City from_osm = read_city({osm_path}, options);
+  for (const bool geometry : {false, true}) {
+    SCOPED_TRACE(geometry ? "out geom" : "out body");
+    const std::string path = write_temp("overpass.json", overpass_json(osm_path, geometry));
+    const City city = read_city({path}, options);
+    ASSERT_EQ(city.objects.size(), from_osm.objects.size());
+    for (const CityObject& o : from_osm.objects) {
+      const CityObject* same = find(city, o.source_id);
+      ASSERT_NE(same, nullptr) << o.source_id;
+      EXPECT_EQ(same->bbox.zmax, o.bbox.zmax) << o.source_id;
+      ASSERT_EQ(same->footprint.size(), o.footprint.size()) << o.source_id;
+      for (std::size_t k = 0; k < o.footprint.size(); ++k) {
+        EXPECT_NEAR(area(same->footprint[k]), area(o.footprint[k]), 1e-6) << o.source_id;
+        EXPECT_EQ(same->footprint[k].holes.size(), o.footprint[k].holes.size()) << o.source_id;
+      }
+      EXPECT_NEAR(same->bbox.xy.min.x, o.bbox.xy.min.x, 1e-6) << o.source_id;
+      EXPECT_NEAR(same->bbox.xy.max.y, o.bbox.xy.max.y, 1e-6) << o.source_id;
+    }
+    EXPECT_EQ(city.streets.lines.size(), from_osm.streets.lines.size());
+    EXPECT_EQ(city.streets.areas.size(), from_osm.streets.areas.size());
+    EXPECT_TRUE(mentions(city.report.warnings, "r21", "")) << "unclosed ring of r21";
+    EXPECT_TRUE(mentions(city.report.warnings, "r22", "outside the extract"));
+    fs::remove(path);
+  }
+  fs::remove(osm_path);
+}
+
+TEST(OsmReader, BrokenOverpassJsonIsRefusedNamingTheElement) {
+  auto refusal = [](const std::string& elements) {
+    try {
+      read_city_text("{\"generator\": \"Overpass API\", \"elements\": " + elements + "}", "q.json",
+                     {});
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.problem(), InputProblem::BadStructure);
+      EXPECT_EQ(e.file(), "q.json");
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal(R"([{"type": "node", "lat": 1, "lon": 2}])"),
+            "q.json: elements[0]: unexpected structure: is not an object with a \"type\" and an "
+            "integer \"id\"");
+  EXPECT_NE(refusal(R"([{"type": "node", "id": 1, "lat": 1, "lon": 2},
+                         {"type": "way", "id": 5, "tags": {"building": "yes"}}])")
+                .find("elements[1]"),
+            std::string::npos);
+  EXPECT_NE(
+      refusal(R"([{"type": "node", "id": 1, "lat": 100, "lon": 2}])").find("lat/lon out of range"),
+      std::string::npos);
+  EXPECT_NE(refusal(R"([{"type": "way", "id": 5, "nodes": [1, 2], "geometry": [null]}])")
+                .find("one position per node"),
+            std::string::npos);
 }
 
 TEST(OsmReader, PayloadIsTheNamedTagOfTheBuilding) {

@@ -17,6 +17,8 @@
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/preprocess/bake/CityBake.hpp"
 #include "urbanpvs/runtime/PvsFile.hpp"
+#include "urbanpvs/runtime/PvsWriter.hpp"
+#include "urbanpvs/validate/ValidationCommand.hpp"
 #include "urbanpvs/validate/Validator.hpp"
 
 namespace urbanpvs {
@@ -75,6 +77,33 @@ validate::ValidationReport bake_and_validate(const geometry::City& city,
 // A generated hilly city (40 m of relief, written as a TINRelief, buildings standing on it)
 // baked and validated with the terrain as the earth: the terrain route from the generator
 // through the reader, the cells' eye band on the ground and the validator.
+// A city read otherwise than for the bake is another city: the validator names each reading
+// setting whose value differs from the one the file stores (files aside), with both values.
+TEST(ValidateCommand, ReadingSettingsThatDifferFromTheBakesAreNamed) {
+  runtime::PvsBake bake;
+  bake.objects.push_back({"o", {0, 0, 0, 1, 1, 1}, {}});
+  runtime::CellRecord cell;
+  cell.triangle = {runtime::Point2{0, 0}, {4, 0}, {0, 4}};
+  cell.z_max = 2;
+  cell.pvs = {0};
+  bake.cells.push_back(cell);
+  bake.meta.properties = {{"default_height_m", "10"},
+                          {"level_height_m", "3"},
+                          {"terrain", "/somewhere/dem.tif"},
+                          {"epsilon_m", "1"}};
+  const std::vector<std::byte> bytes = runtime::encode(bake);
+  runtime::PvsFile file;
+  ASSERT_EQ(runtime::PvsFile::open(bytes.data(), bytes.size(), file), runtime::Status::kOk);
+  geometry::ReadOptions read;
+  EXPECT_EQ(validate::reading_differences(read, file),
+            std::vector<std::string>{"default_height_m = 10 (this run: none)"});
+  read.default_height = 10;
+  EXPECT_TRUE(validate::reading_differences(read, file).empty());
+  read.level_height = 3.5;
+  EXPECT_EQ(validate::reading_differences(read, file),
+            std::vector<std::string>{"level_height_m = 3 (this run: 3.5)"});
+}
+
 TEST(Validate, GeneratedHillyCityHasNoMisses) {
   cities::CityParams p;
   p.size_km2 = 0.1;

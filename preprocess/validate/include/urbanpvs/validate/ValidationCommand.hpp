@@ -8,10 +8,12 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/ReadSettings.hpp"
 #include "urbanpvs/runtime/ExitCodes.hpp"
 #include "urbanpvs/runtime/PvsFile.hpp"
 #include "urbanpvs/validate/Validator.hpp"
@@ -32,6 +34,26 @@ inline void add_target_options(CLI::App& app, ValidationOptions& options) {
   app.add_option("--seed", options.seed, "Random seed")->capture_default_str();
 }
 
+/// The reading settings of this run that differ from those the bake stored in `file` (its
+/// properties, e.g. default_height_m = 10), as "key = file's value (this run: value)". Files are
+/// not compared: a path may name the same file in other words. A property the file lacks (an
+/// older file) is not compared either.
+inline std::vector<std::string> reading_differences(const geometry::ReadOptions& read,
+                                                    const runtime::PvsFile& file) {
+  std::vector<std::string> out;
+  for (const auto& s : geometry::read_settings()) {
+    if (s.kind == geometry::SettingKind::Path) continue;
+    const std::string key = s.property_key(), mine = s.get(read);
+    for (std::size_t i = 0; i < file.property_count(); ++i) {
+      std::string_view k, v;
+      file.property(i, k, v);
+      if (k == key && v != mine)
+        out.push_back(key + " = " + std::string(v) + " (this run: " + mine + ")");
+    }
+  }
+  return out;
+}
+
 /// Reads the city files (all of `inputs` but the last), loads the last as a .pvs file and
 /// returns work(city, file), or the exit code of what failed, with the message on stderr
 /// prefixed by `tool`.
@@ -48,6 +70,14 @@ int run_on_city_and_pvs(const char* tool, std::vector<std::string> inputs,
       std::fprintf(stderr, "%s: %s: cannot load: %s\n", tool, pvs_path.c_str(), error.detail);
       return exit_code::for_load(error.status);
     }
+    // The ground truth is of the city as read now: read otherwise than for the bake (a default
+    // height the bake had and this run lacks), it is another city, and what the bake hid behind
+    // buildings this run cannot see would be reported as misses.
+    for (const std::string& d : reading_differences(read, file))
+      std::fprintf(stderr,
+                   "%s: warning: %s was baked with %s: the ground truth is of the city read "
+                   "otherwise; give the bake's reading options\n",
+                   tool, pvs_path.c_str(), d.c_str());
     return work(city, file);
   } catch (const geometry::InputError& e) {
     std::fprintf(stderr, "%s: %s\n", tool, e.what());
