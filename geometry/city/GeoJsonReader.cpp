@@ -163,18 +163,24 @@ struct HeightReader {
     }
     for (const char* key : {"height", "building:height", "measuredHeight"})
       if (!f.height) f.height = positive(props, key, f);
-    if (std::optional<double> levels = positive(props, "building:levels", f))
-      f.levels_height = *levels * options.level_height;
+    // OSM's keys, then Overture Maps' (its buildings theme writes num_floors, min_floor,
+    // roof_height and roof_shape, with the same meanings and roof shapes as OSM's).
+    std::optional<double> levels = positive(props, "building:levels", f);
+    if (!levels) levels = positive(props, "num_floors", f);
+    if (levels) f.levels_height = *levels * options.level_height;
     if (!f.height && f.levels_height) {
       f.height = f.levels_height;
       f.height_from_levels = true;
     }
-    f.roof_shape = string_member(props, "roof:shape");
+    const char* shape_key = given(props, "roof:shape") ? "roof:shape" : "roof_shape";
+    f.roof_shape = string_member(props, shape_key);
     for (char& c : f.roof_shape) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (given(props, "roof:shape") && !props["roof:shape"].is_string())
-      f.roof_shape = props["roof:shape"].dump();  // "roof:shape": 9 is no shape we know: not flat
+    if (given(props, shape_key) && !props[shape_key].is_string())
+      f.roof_shape = props[shape_key].dump();  // "roof:shape": 9 is no shape we know: not flat
     if (std::optional<double> r = length(props, "roof:height", f.id))
       f.roof_height = *r;
+    else if (std::optional<double> o = length(props, "roof_height", f.id))
+      f.roof_height = *o;
     else if (std::optional<double> l = length(props, "roof:levels", f.id))
       f.roof_height = *l * options.level_height;
     if (f.roof_height && *f.roof_height < 0) f.roof_height.reset();
@@ -182,7 +188,10 @@ struct HeightReader {
       f.min_height = *m;
     } else if (std::optional<double> l = length(props, "building:min_level", f.id)) {
       f.min_height = *l * options.level_height;
-    } else if (given(props, "min_height") || given(props, "building:min_level")) {
+    } else if (std::optional<double> o = length(props, "min_floor", f.id)) {
+      f.min_height = *o * options.level_height;
+    } else if (given(props, "min_height") || given(props, "building:min_level") ||
+               given(props, "min_floor")) {
       // An unreadable base must not become the ground: the part may start anywhere above it.
       f.base_unknown = true;
       report.warnings.push_back(file + ": " + f.id +
@@ -321,7 +330,8 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
   o.bbox.extend(f.box.max, std::max(h, f.min_height));
   const std::string none = "no " +
                            (options.height_field.empty() ? "" : options.height_field + ", ") +
-                           "height, building:height, measuredHeight or building:levels";
+                           "height, building:height, measuredHeight, building:levels or "
+                           "num_floors";
   if (!height && options.strict)
     throw InputError(InputProblem::MissingHeight, file, f.id,
                      none + " (give a default height; --strict refuses objects of unknown height)");

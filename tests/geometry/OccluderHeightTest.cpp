@@ -112,6 +112,36 @@ TEST(GeoJsonRoof, StoreysLieBelowTheRoof) {
   EXPECT_DOUBLE_EQ(object(c, "levels-with-roof").bbox.zmax, 15.0);
 }
 
+// Overture Maps' buildings theme names storeys, roof and base its own way (num_floors,
+// roof_shape, roof_height, min_floor) and writes null for what it does not know.
+TEST(GeoJsonOverture, ItsKeysGiveStoreysRoofsAndBases) {
+  auto square = [](const char* id, double x, const char* props) {
+    char f[600];
+    std::snprintf(f, sizeof f,
+                  R"({"type":"Feature","id":"%s","properties":%s,"geometry":{"type":"Polygon",)"
+                  R"("coordinates":[[[%.1f,446000],[%.1f,446000],[%.1f,446010],[%.1f,446010],)"
+                  R"([%.1f,446000]]]}})",
+                  id, props, 85000 + x, 85010 + x, 85010 + x, 85000 + x, 85000 + x);
+    return std::string(f);
+  };
+  const std::string text =
+      R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"EPSG:28992"}},)"
+      R"("features":[)" +
+      square("floors", 0, R"({"height":null,"num_floors":4,"roof_shape":null})") + "," +
+      square("gabled", 20, R"({"height":12,"roof_shape":"gabled","roof_height":4})") + "," +
+      square("raised", 40, R"({"height":10,"min_floor":2})") + "," +
+      square("unknown", 60, R"({"height":null,"num_floors":null})") + "]}";
+  const City c = read_city_text(text, "overture.geojson", {});
+  EXPECT_DOUBLE_EQ(occluder_top(c, "floors"), 12.0);  // 4 storeys x 3 m
+  EXPECT_DOUBLE_EQ(object(c, "floors").bbox.zmax, 12.0);
+  EXPECT_DOUBLE_EQ(occluder_top(c, "gabled"), 8.0);  // the eaves: 12 - roof_height 4
+  EXPECT_DOUBLE_EQ(object(c, "gabled").bbox.zmax, 12.0);
+  EXPECT_DOUBLE_EQ(object(c, "raised").bbox.zmin, 6.0);  // 2 floors x 3 m above the ground
+  for (const OccluderPrism& p : object(c, "raised").occluders) EXPECT_GE(p.ground_z, 6.0);
+  EXPECT_FALSE(object(c, "unknown").occludes);
+  EXPECT_TRUE(object(c, "unknown").occluders.empty());
+}
+
 // ---- 2. GeoJSON: no occluder volume below min_height / building:min_level ----
 
 TEST(GeoJsonMinHeight, NoOccluderVolumeBelowTheBase) {
