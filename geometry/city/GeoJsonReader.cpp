@@ -115,6 +115,9 @@ struct Feature {
   std::string lost;                     // why no footprint of positive area is left, or empty
   std::string refused_height;           // a height or level count given but not positive, as given
   std::string payload;                  // ReadOptions::payload_key's property
+  /// OSM's location=underground, Overture's is_underground: a car park or station below the
+  /// street, mapped as a building: its footprint is no wall anyone sees.
+  bool underground = false;
 };
 
 const Json& properties_of(const Json& feature) {
@@ -173,6 +176,8 @@ struct HeightReader {
       f.height_from_levels = true;
     }
     const char* shape_key = given(props, "roof:shape") ? "roof:shape" : "roof_shape";
+    f.underground = string_member(props, "location") == "underground" ||
+                    (props.contains("is_underground") && props["is_underground"] == true);
     f.roof_shape = string_member(props, shape_key);
     for (char& c : f.roof_shape) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (given(props, shape_key) && !props[shape_key].is_string())
@@ -328,6 +333,10 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
   }
   o.bbox.extend(f.box.min, f.min_height);
   o.bbox.extend(f.box.max, std::max(h, f.min_height));
+  // Its walls and top lie below the ground: an occluder or a blocking surface at street level
+  // would hide what is in front of it from the bake and from the validator alike.
+  if (f.underground)
+    return file + ": " + f.id + ": underground (location=underground or is_underground)";
   const std::string none = "no " +
                            (options.height_field.empty() ? "" : options.height_field + ", ") +
                            "height, building:height, measuredHeight, building:levels or "

@@ -113,8 +113,9 @@ TEST(GeoJsonRoof, StoreysLieBelowTheRoof) {
 }
 
 // Overture Maps' buildings theme names storeys, roof and base its own way (num_floors,
-// roof_shape, roof_height, min_floor) and writes null for what it does not know.
-TEST(GeoJsonOverture, ItsKeysGiveStoreysRoofsAndBases) {
+// roof_shape, roof_height, min_floor) and writes null for what it does not know; it and OSM
+// mark buildings below the street (is_underground, location=underground).
+TEST(GeoJsonOverture, ItsKeysGiveStoreysRoofsBasesAndWhatLiesUnderground) {
   auto square = [](const char* id, double x, const char* props) {
     char f[600];
     std::snprintf(f, sizeof f,
@@ -130,7 +131,9 @@ TEST(GeoJsonOverture, ItsKeysGiveStoreysRoofsAndBases) {
       square("floors", 0, R"({"height":null,"num_floors":4,"roof_shape":null})") + "," +
       square("gabled", 20, R"({"height":12,"roof_shape":"gabled","roof_height":4})") + "," +
       square("raised", 40, R"({"height":10,"min_floor":2})") + "," +
-      square("unknown", 60, R"({"height":null,"num_floors":null})") + "]}";
+      square("unknown", 60, R"({"height":null,"num_floors":null})") + "," +
+      square("garage", 80, R"({"height":6,"is_underground":true})") + "," +
+      square("osm-garage", 100, R"({"building":"yes","location":"underground","height":6})") + "]}";
   const City c = read_city_text(text, "overture.geojson", {});
   EXPECT_DOUBLE_EQ(occluder_top(c, "floors"), 12.0);  // 4 storeys x 3 m
   EXPECT_DOUBLE_EQ(object(c, "floors").bbox.zmax, 12.0);
@@ -140,6 +143,12 @@ TEST(GeoJsonOverture, ItsKeysGiveStoreysRoofsAndBases) {
   for (const OccluderPrism& p : object(c, "raised").occluders) EXPECT_GE(p.ground_z, 6.0);
   EXPECT_FALSE(object(c, "unknown").occludes);
   EXPECT_TRUE(object(c, "unknown").occluders.empty());
+  // Below the street: neither an occluder nor a surface that blocks the validator's rays.
+  for (const char* id : {"garage", "osm-garage"}) {
+    EXPECT_FALSE(object(c, id).occludes) << id;
+    EXPECT_TRUE(object(c, id).occluders.empty()) << id;
+    EXPECT_TRUE(object(c, id).surfaces.empty()) << id;
+  }
 }
 
 // ---- 2. GeoJSON: no occluder volume below min_height / building:min_level ----
