@@ -67,28 +67,67 @@ std::string feature_id(const Json& feature, std::size_t index) {
 }
 
 // A geometry's polygons as raw coordinate rings: [[[x, y], ...], [hole], ...].
-std::vector<const Json*> polygons_of(const Json& g, const std::string& file,
-                                     const std::string& id) {
+// The polygons of a Polygon, a MultiPolygon or a GeometryCollection (its polygonal members, at
+// any depth: exports of OSM relations write them so), each as given: an array of rings, maybe
+// empty. Throws BadStructure for coordinates that are no array.
+void polygon_arrays(const Json& g, const std::string& file, const std::string& id,
+                    std::vector<const Json*>& out) {
   const std::string type = string_member(g, "type");
+  if (type == "GeometryCollection") {
+    if (g.contains("geometries") && g["geometries"].is_array())
+      for (const Json& member : g["geometries"])
+        if (member.is_object()) polygon_arrays(member, file, id, out);
+    return;
+  }
+  if (type != "Polygon" && type != "MultiPolygon") return;
   if (!g.contains("coordinates") || !g["coordinates"].is_array())
     throw InputError(InputProblem::BadStructure, file, id, type + " without \"coordinates\"");
   const Json& c = g["coordinates"];
-  std::vector<const Json*> out;
   if (type == "Polygon") {
     out.push_back(&c);
   } else {
     for (const Json& p : c) out.push_back(&p);
   }
+}
+
+std::vector<const Json*> polygon_arrays(const Json& g, const std::string& file,
+                                        const std::string& id) {
+  std::vector<const Json*> out;
+  polygon_arrays(g, file, id, out);
+  return out;
+}
+
+// The polygons with rings, for reading them: an empty one (a MultiPolygon's `[]` member, as
+// some exports write) has no area to lose and is left out, said in a warning; --strict, or
+// none left, refuses the feature (InvalidGeometry: without --strict it is kept over its box).
+std::vector<const Json*> polygons_of(const Json& g, const std::string& file, const std::string& id,
+                                     bool strict, ReadReport& report) {
+  const std::string type = string_member(g, "type");
+  std::vector<const Json*> out;
+  std::size_t empty = 0;
+  for (const Json* p : polygon_arrays(g, file, id)) {
+    if (p->is_array() && !p->empty())
+      out.push_back(p);
+    else
+      ++empty;
+  }
+  if (empty > 0 && (strict || out.empty()))
+    throw InputError(InputProblem::InvalidGeometry, file, id, "polygon without rings");
   if (out.empty())
     throw InputError(InputProblem::InvalidGeometry, file, id, type + " without polygons");
-  for (const Json* p : out)
-    if (!p->is_array() || p->empty())
-      throw InputError(InputProblem::InvalidGeometry, file, id, "polygon without rings");
+  if (empty > 0)
+    report.warnings.push_back(file + ": " + id + ": " + std::to_string(empty) +
+                              " polygon(s) without rings left out");
   return out;
 }
 
 bool is_polygonal(const Json& g) {
-  const std::string t = g.is_object() ? string_member(g, "type") : "";
+  if (!g.is_object()) return false;
+  const std::string t = string_member(g, "type");
+  if (t == "GeometryCollection")
+    return g.contains("geometries") && g["geometries"].is_array() &&
+           std::any_of(g["geometries"].begin(), g["geometries"].end(),
+                       [](const Json& m) { return is_polygonal(m); });
   return t == "Polygon" || t == "MultiPolygon";
 }
 
@@ -210,7 +249,7 @@ Feature read_feature(const Json& feature, std::size_t index, const std::string& 
   Feature f;
   f.id = feature_id(feature, index);
   const Json& g = feature["geometry"];
-  for (const Json* poly : polygons_of(g, file, f.id)) {
+  for (const Json* poly : polygons_of(g, file, f.id, heights.options.strict, report)) {
     std::vector<Ring> rings;
     for (const Json& ring : *poly) {
       if (!ring.is_array())
@@ -371,10 +410,11 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
 // The box of a feature's raw coordinates, whatever their rings are like.
 Box2 raw_box(const Json& feature, const std::string& file, const std::string& id) {
   Box2 b;
-  for (const Json* poly : polygons_of(feature["geometry"], file, id))
-    for (const Json& ring : *poly)
-      if (ring.is_array())
-        for (const Json& p : ring) b.extend(position(p, file, id));
+  for (const Json* poly : polygon_arrays(feature["geometry"], file, id))
+    if (poly->is_array())
+      for (const Json& ring : *poly)
+        if (ring.is_array())
+          for (const Json& p : ring) b.extend(position(p, file, id));
   return b;
 }
 
@@ -415,10 +455,11 @@ InputScan scan_geojson(const Json& doc, const std::string& file, const ReadOptio
   for_each_feature(doc, file, [&](const Json& f, std::size_t i) {
     if (!f.is_object() || !f.contains("geometry") || !is_polygonal(f["geometry"])) return;
     const std::string id = feature_id(f, i);
-    for (const Json* poly : polygons_of(f["geometry"], file, id))
-      for (const Json& ring : *poly)
-        if (ring.is_array())
-          for (const Json& p : ring) scan.bounds.extend(position(p, file, id));
+    for (const Json* poly : polygon_arrays(f["geometry"], file, id))
+      if (poly->is_array())
+        for (const Json& ring : *poly)
+          if (ring.is_array())
+            for (const Json& p : ring) scan.bounds.extend(position(p, file, id));
   });
   const bool lonlat_range = !scan.bounds.empty() && scan.bounds.min.x >= -180 &&
                             scan.bounds.max.x <= 180 && scan.bounds.min.y >= -90 &&
@@ -473,6 +514,10 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
     }
     try {
       Feature f = read_feature(feature, i, file, mapping, heights, report);
+      if (f.box.empty()) {  // rings without positions: nothing to place it by
+        report.warnings.push_back(file + ": " + f.id + ": no coordinates: skipped");
+        return;
+      }
       (f.part ? parts : buildings).push_back(std::move(f));
     } catch (const InputError& e) {
       if (options.strict || e.problem() != InputProblem::InvalidGeometry) throw;

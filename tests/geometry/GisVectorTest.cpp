@@ -224,8 +224,8 @@ TEST(GisVector, HeightFieldComesFirstAndIsNamedWhenMissing) {
   const auto [problem, what] = error_of(src, options);
   EXPECT_EQ(problem, InputProblem::MissingHeight);
   EXPECT_EQ(what, src.string() +
-                      ": c: missing height: no h_max, height, building:height, measuredHeight or "
-                      "building:levels "
+                      ": c: missing height: no h_max, height, building:height, measuredHeight, "
+                      "building:levels or num_floors "
                       "(give a default height; --strict refuses objects of unknown height)");
 }
 

@@ -362,6 +362,57 @@ TEST(ReadCity, NoFileIsAnError) {
   EXPECT_EQ(out.error->problem(), InputProblem::EmptyCity);
 }
 
+// GeoJSON as exporters write it beyond Polygon and MultiPolygon: a GeometryCollection holding a
+// building's polygon (and a point), a MultiPolygon with an empty member, and features whose
+// rings hold no position. The city reads: the collection's polygon is the building, the empty
+// member is left out with a warning, a feature without any position is skipped with one;
+// --strict still refuses the empty member.
+TEST(ReadCity, GeoJsonCollectionsAndEmptyPolygonsAreReadNotRefused) {
+  const std::string square =
+      "[[85000,446000],[85010,446000],[85010,446010],[85000,446010],"
+      "[85000,446000]]";
+  const std::string other =
+      "[[85020,446000],[85030,446000],[85030,446010],[85020,446010],"
+      "[85020,446000]]";
+  auto feature = [](const std::string& id, const std::string& geometry) {
+    return R"({"type":"Feature","id":")" + id + R"(","properties":{"height":10},"geometry":)" +
+           geometry + "}";
+  };
+  const std::string text =
+      R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"EPSG:28992"}},)"
+      R"("features":[)" +
+      feature("collection", R"({"type":"GeometryCollection","geometries":[{"type":"Polygon",)"
+                            R"("coordinates":[)" +
+                                square + R"(]},{"type":"Point","coordinates":[85005,446005]}]})") +
+      "," +
+      feature("empty-member", R"({"type":"MultiPolygon","coordinates":[[],[)" + other + "]]}") +
+      "," + feature("empty-ring", R"({"type":"Polygon","coordinates":[[]]})") + "," +
+      feature("no-rings", R"({"type":"Polygon","coordinates":[]})") + "]}";
+  const City city = read_city_text(text, "exported.geojson", {});
+  ASSERT_EQ(city.objects.size(), 2u);
+  EXPECT_EQ(city.objects[0].source_id, "collection");
+  EXPECT_NEAR(area(city.objects[0].footprint.at(0)), 100, 1e-6);
+  EXPECT_EQ(city.objects[1].source_id, "empty-member");
+  EXPECT_NEAR(area(city.objects[1].footprint.at(0)), 100, 1e-6);
+  auto warned = [&](const std::string& what) {
+    return std::any_of(city.report.warnings.begin(), city.report.warnings.end(),
+                       [&](const std::string& w) { return w.find(what) != std::string::npos; });
+  };
+  EXPECT_TRUE(warned("exported.geojson: empty-member: 1 polygon(s) without rings left out"));
+  EXPECT_TRUE(warned("exported.geojson: empty-ring: no coordinates: skipped"));
+  EXPECT_TRUE(
+      warned("no-rings: invalid geometry: polygon without rings (no coordinates: skipped)"));
+  ReadOptions strict;
+  strict.strict = true;
+  try {
+    read_city_text(text, "exported.geojson", strict);
+    ADD_FAILURE() << "--strict read an empty polygon";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::InvalidGeometry);
+    EXPECT_EQ(e.feature(), "empty-member");
+  }
+}
+
 TEST(ReadCity, FilesInOneCrsAreReadTogether) {
   // The counterpart of mixed_crs_a + mixed_crs_b: the same file twice shares its CRS.
   const std::string a = (kTestData / "bad" / "mixed_crs_a.city.json").string();
