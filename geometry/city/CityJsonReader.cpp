@@ -172,7 +172,10 @@ std::vector<Surface> surfaces_of(const Json& g, const std::string& file, const s
   auto add_surfaces = [&](const Json& list, const Json* values) {
     if (!is_array(list)) malformed(file, id, "malformed " + type + " boundaries");
     for (std::size_t i = 0; i < list.size(); ++i) {
-      if (!is_array(list[i]) || list[i].empty() || !is_array(list[i][0]))
+      // A surface without rings (`[]`, as some converters write a face they dropped) has no
+      // area: nothing to read and nothing lost, so it is passed over, not the city refused.
+      if (is_array(list[i]) && list[i].empty()) continue;
+      if (!is_array(list[i]) || !is_array(list[i][0]))
         malformed(file, id, "malformed " + type + " surface");
       out.push_back({&list[i], semantic_at(child(values, i))});
     }

@@ -413,6 +413,35 @@ TEST(ReadCity, GeoJsonCollectionsAndEmptyPolygonsAreReadNotRefused) {
   }
 }
 
+// A CityJSON surface without rings (`[]` in a shell) has no area: the building reads as it
+// does without it, and the city is not refused.
+TEST(ReadCity, CityJsonEmptySurfaceIsPassedOver) {
+  auto city_with = [](const std::string& extra) {
+    const std::string shell =
+        "[[[0,3,2,1]],[[4,5,6,7]],[[0,1,5,4]],[[1,2,6,5]],[[2,3,7,6]]," + extra + "[[3,0,4,7]]]";
+    const std::string text =
+        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0.001,0.001],)"
+        R"("translate":[85000,446000,0]},"metadata":{"referenceSystem":)"
+        R"("https://www.opengis.net/def/crs/EPSG/0/7415"},"CityObjects":{"b":{"type":"Building",)"
+        R"("geometry":[{"type":"Solid","lod":"2","boundaries":[)" +
+        shell +
+        R"(]}]}},"vertices":[[0,0,0],[10000,0,0],[10000,10000,0],[0,10000,0],[0,0,10000],)"
+        R"([10000,0,10000],[10000,10000,10000],[0,10000,10000]]})";
+    return read_city_text(text, "shell.city.json", {});
+  };
+  const City plain = city_with("");
+  const City with_empty = city_with("[],");
+  ASSERT_EQ(with_empty.objects.size(), 1u);
+  ASSERT_EQ(plain.objects.size(), 1u);
+  const CityObject& a = plain.objects[0];
+  const CityObject& b = with_empty.objects[0];
+  ASSERT_EQ(b.occluders.size(), a.occluders.size());
+  ASSERT_EQ(b.occluders.size(), 1u);
+  EXPECT_EQ(b.occluders[0].top_z, 10);
+  EXPECT_NEAR(area(b.occluders[0].footprint), 100, 1e-6);
+  EXPECT_EQ(b.surfaces.size(), a.surfaces.size());
+}
+
 TEST(ReadCity, FilesInOneCrsAreReadTogether) {
   // The counterpart of mixed_crs_a + mixed_crs_b: the same file twice shares its CRS.
   const std::string a = (kTestData / "bad" / "mixed_crs_a.city.json").string();
