@@ -49,6 +49,7 @@ using Ring = std::vector<Point>;
 struct GmlPolygon {
   std::vector<Ring> rings;  // exterior first
   std::string semantic;     // the thematic surface it was written under, if any
+  bool unreadable = false;  // a ring's coordinates could not be read: the polygon is left out
 };
 
 // One polygon of an object's geometry at one LoD: by index, or by a gml:id to resolve.
@@ -66,6 +67,10 @@ struct GmlObject {
   std::vector<Member> members;
   std::optional<double> measured_height;
   std::vector<std::pair<std::string, std::string>> attributes;  // generic attributes, in order
+  /// Why a polygon of it could not be read (the first such reason), or empty. Its other
+  /// polygons cannot be trusted to bound an occluder (a roof face missing lifts the top), so
+  /// the CityJSON reader keeps it as an object that occludes nothing (kUnreadableMember).
+  std::string unreadable;
 };
 
 // Names without their namespace prefix: "bldg:RoofSurface" -> "RoofSurface".
@@ -271,6 +276,7 @@ class CityGmlParser {
     }
     if (n == "LinearRing") {
       ring_.clear();
+      ring_problem_.clear();
       return;
     }
     if (n == "posList" || n == "pos" || n == "coordinates" || n == "measuredHeight") {
@@ -366,17 +372,25 @@ class CityGmlParser {
     }
     if (n == "LinearRing") {
       if (!open_polygons_.empty()) {
+        GmlPolygon& polygon = polygons_[open_polygons_.back()];
         // CityGML closes a ring by repeating its first point; CityJSON does not.
         if (ring_.size() > 1 && ring_.front() == ring_.back()) ring_.pop_back();
-        polygons_[open_polygons_.back()].rings.push_back(std::move(ring_));
+        if (ring_problem_.empty()) {
+          polygon.rings.push_back(std::move(ring_));
+        } else {
+          polygon.unreadable = true;
+          std::string& why = objects_[object_stack_.back()].unreadable;
+          if (why.empty()) why = "a ring's coordinates cannot be read: " + ring_problem_;
+        }
       }
       ring_.clear();
+      ring_problem_.clear();
       return;
     }
     if (n == "Polygon" || n == "Triangle" || n == "Rectangle") {
       const std::size_t index = open_polygons_.back();
       open_polygons_.pop_back();
-      if (!contexts_.empty() && !object_stack_.empty()) {
+      if (!contexts_.empty() && !object_stack_.empty() && !polygons_[index].unreadable) {
         Member m;
         m.lod = contexts_.back().lod;
         m.semantic = contexts_.back().semantic;
@@ -391,8 +405,7 @@ class CityGmlParser {
   void read_points(bool comma_tuples, int dimension) {
     if (comma_tuples) std::replace(text_.begin(), text_.end(), ',', ' ');
     if (dimension != 2 && dimension != 3) {
-      fail(InputProblem::BadStructure, current_id(),
-           "srsDimension " + std::to_string(dimension) + " (2 or 3 expected)");
+      ring_problem("srsDimension " + std::to_string(dimension) + " (2 or 3 expected)");
       return;
     }
     std::vector<double> values;
@@ -403,22 +416,33 @@ class CityGmlParser {
       char* stop = nullptr;
       const double v = std::strtod(s, &stop);
       if (stop == s) {
-        fail(InputProblem::BadStructure, current_id(),
-             "coordinate list holds \"" +
-                 std::string(s, std::min<std::size_t>(20, std::strlen(s))) + "\", not a number");
+        ring_problem("coordinate list holds \"" +
+                     std::string(s, std::min<std::size_t>(20, std::strlen(s))) +
+                     "\", not a number");
         return;
       }
       values.push_back(v);
       s = stop;
     }
     if (values.size() % static_cast<std::size_t>(dimension) != 0) {
-      fail(InputProblem::BadStructure, current_id(),
-           std::to_string(values.size()) + " coordinates are no whole number of " +
-               std::to_string(dimension) + "D points");
+      ring_problem(std::to_string(values.size()) + " coordinates are no whole number of " +
+                   std::to_string(dimension) + "D points");
       return;
     }
     for (std::size_t i = 0; i < values.size(); i += static_cast<std::size_t>(dimension))
       ring_.push_back({values[i], values[i + 1], dimension == 3 ? values[i + 2] : 0.0});
+  }
+
+  // A ring of a building that cannot be read: its polygon is left out and the building kept as
+  // an object that occludes nothing (GmlObject::unreadable). Outside a building's polygon ring
+  // (a TIN relief's triangle, an envelope) it is refused, as before.
+  void ring_problem(const std::string& what) {
+    if (object_stack_.empty() || open_polygons_.empty() || names_.empty() ||
+        names_.back() != "LinearRing") {
+      fail(InputProblem::BadStructure, current_id(), what);
+      return;
+    }
+    if (ring_problem_.empty()) ring_problem_ = what;
   }
 
   // The CityJSON document: version 1.0, whose vertices are plain coordinates (no transform, so
@@ -444,6 +468,7 @@ class CityGmlParser {
       Json obj;
       obj["type"] = o.type;
       if (o.measured_height) obj["attributes"]["measuredHeight"] = *o.measured_height;
+      if (!o.unreadable.empty()) obj[kUnreadableMember] = o.unreadable;
       for (const auto& [key, value] : o.attributes) obj["attributes"][key] = value;
       if (o.parent) obj["parents"] = Json::array({objects_[*o.parent].id});
       Json children = Json::array();
@@ -553,6 +578,7 @@ class CityGmlParser {
   std::unordered_map<std::string, std::pair<std::size_t, std::size_t>> surface_ids_;
   std::vector<std::size_t> open_polygons_;
   Ring ring_;
+  std::string ring_problem_;  ///< why ring_ cannot be read (ring_problem), or empty
   int excluded_depth_ = 0;
   bool collecting_ = false;
   struct Generic {  // a generic attribute being read

@@ -685,6 +685,12 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
                          std::string& why_not) {
   std::vector<std::pair<std::string, const Json*>> members;
   objs.collect_parts(id, obj, members, 0);
+  // A polygon the CityGML reader could not read: the rest cannot be trusted to bound an
+  // occluder (a roof face missing would lift the top), so none is made (thesis 7.1).
+  for (const auto& [pid, pobj] : members)
+    if (pobj->contains(kUnreadableMember))
+      throw InputError(InputProblem::InvalidGeometry, objs.file.file(), pid,
+                       string_member(*pobj, kUnreadableMember));
   CityObject o;
   o.source_id = id;
   std::vector<PartResult> parts;
@@ -885,6 +891,10 @@ void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMap
       if (options.strict || e.problem() != InputProblem::InvalidGeometry) throw;
       o = read_building_box(objs, id, obj);
       o.payload = payload;
+      if (o.bbox.xy.empty()) {  // not one position left to place it by
+        city.report.warnings.push_back(std::string(e.what()) + " (no coordinates: skipped)");
+        continue;
+      }
       city.objects.push_back(non_occluding(std::move(o), e.what(), city.report));
       continue;
     }

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -87,6 +88,63 @@ TEST(CityGml, ReadsCityGml3BoundariesPartsAndReusedGeometry) {
     const CityObject& reuse = object_named(city, id);
     EXPECT_EQ(reuse.surfaces.size(), 6u) << id;
     EXPECT_EQ(prisms_of(reuse), (Prisms{{20.0, 16.0}})) << id;
+  }
+}
+
+// A building with a polygon whose coordinates cannot be read (13 numbers for 3D points) is kept
+// as an object that occludes nothing, over the box of what could be read, and the rest of the
+// city reads as it does without it; --strict refuses it, naming the building.
+TEST(CityGml, UnreadableRingKeepsItsBuildingAsAnObjectThatOccludesNothing) {
+  auto box = [](double x0, const std::string& extra) {
+    const double x1 = x0 + 10;
+    auto ring = [](std::vector<std::array<double, 3>> pts) {
+      std::string s = "<gml:surfaceMember><gml:Polygon><gml:exterior><gml:LinearRing><gml:posList>";
+      for (const auto& p : pts)
+        s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " ";
+      return s + "</gml:posList></gml:LinearRing></gml:exterior></gml:Polygon></gml:surfaceMember>";
+    };
+    return "<gml:MultiSurface>" +
+           ring({{x0, 0, 0}, {x0, 10, 0}, {x1, 10, 0}, {x1, 0, 0}, {x0, 0, 0}}) +
+           ring({{x0, 0, 10}, {x1, 0, 10}, {x1, 10, 10}, {x0, 10, 10}, {x0, 0, 10}}) +
+           ring({{x0, 0, 0}, {x1, 0, 0}, {x1, 0, 10}, {x0, 0, 10}, {x0, 0, 0}}) +
+           ring({{x1, 0, 0}, {x1, 10, 0}, {x1, 10, 10}, {x1, 0, 10}, {x1, 0, 0}}) +
+           ring({{x1, 10, 0}, {x0, 10, 0}, {x0, 10, 10}, {x1, 10, 10}, {x1, 10, 0}}) +
+           ring({{x0, 10, 0}, {x0, 0, 0}, {x0, 0, 10}, {x0, 10, 10}, {x0, 10, 0}}) + extra +
+           "</gml:MultiSurface>";
+  };
+  const std::string odd =
+      "<gml:surfaceMember><gml:Polygon><gml:exterior><gml:LinearRing><gml:posList>20 0 12 21 0 "
+      "12 21 1 12 20 0 12 5</gml:posList></gml:LinearRing></gml:exterior></gml:Polygon>"
+      "</gml:surfaceMember>";
+  auto building = [](const std::string& id, const std::string& geometry) {
+    return "<cityObjectMember><bldg:Building gml:id=\"" + id + "\"><bldg:lod2MultiSurface>" +
+           geometry + "</bldg:lod2MultiSurface></bldg:Building></cityObjectMember>";
+  };
+  const std::string text =
+      "<?xml version=\"1.0\"?><CityModel xmlns=\"http://www.opengis.net/citygml/2.0\" "
+      "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" "
+      "xmlns:gml=\"http://www.opengis.net/gml\"><gml:boundedBy><gml:Envelope "
+      "srsName=\"EPSG:28992\" srsDimension=\"3\"/></gml:boundedBy>" +
+      building("good", box(0, "")) + building("odd", box(20, odd)) + "</CityModel>";
+  const City city = read_city_text(text, "odd.gml", {});
+  ASSERT_EQ(city.objects.size(), 2u);
+  EXPECT_TRUE(city.objects[0].occludes);
+  EXPECT_EQ(city.objects[1].source_id, "odd");
+  EXPECT_FALSE(city.objects[1].occludes);
+  EXPECT_TRUE(city.objects[1].occluders.empty());
+  EXPECT_DOUBLE_EQ(city.objects[1].bbox.zmax, 10);  // the box of the polygons that could be read
+  ASSERT_EQ(city.report.non_occluding.size(), 1u);
+  EXPECT_EQ(city.report.non_occluding[0],
+            "odd.gml: odd: invalid geometry: a ring's coordinates cannot be read: 13 coordinates "
+            "are no whole number of 3D points (kept as an object that occludes nothing)");
+  ReadOptions strict;
+  strict.strict = true;
+  try {
+    read_city_text(text, "odd.gml", strict);
+    ADD_FAILURE() << "--strict read an unreadable ring";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::InvalidGeometry);
+    EXPECT_EQ(e.feature(), "odd");
   }
 }
 
