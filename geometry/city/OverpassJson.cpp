@@ -124,7 +124,10 @@ class OverpassElements {
   }
 
   void add_way(std::size_t k, const Json& e) {
-    if (!e.contains("nodes") || !e["nodes"].is_array()) fail(k, "way without a \"nodes\" array");
+    if (!e.contains("nodes") || !e["nodes"].is_array())
+      fail(k,
+           "way without a \"nodes\" array: the query wrote no geometry (\"out tags\", \"out "
+           "center\"); write it with \"out geom;\" or \"out body; >; out skel qt;\"");
     const Json& nodes = e["nodes"];
     if (e.contains("geometry")) {  // "out geom": the nodes' locations, in order
       const Json& g = e["geometry"];

@@ -311,7 +311,8 @@ TEST(OsmReader, BrokenOverpassJsonIsRefusedNamingTheElement) {
             "integer \"id\"");
   EXPECT_NE(refusal(R"([{"type": "node", "id": 1, "lat": 1, "lon": 2},
                          {"type": "way", "id": 5, "tags": {"building": "yes"}}])")
-                .find("elements[1]"),
+                .find("elements[1]: unexpected structure: way without a \"nodes\" array: the "
+                      "query wrote no geometry"),
             std::string::npos);
   EXPECT_NE(
       refusal(R"([{"type": "node", "id": 1, "lat": 100, "lon": 2}])").find("lat/lon out of range"),
