@@ -232,8 +232,12 @@ void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& featur
   auto assembled =
       areas.handler([&](osmium::memory::Buffer&& buffer) { osmium::apply(buffer, collect); });
   if (sorted == nullptr) {
+    // The assembly checks the order of the ways only; the node locations need every node
+    // before the ways, which an Overpass export with its ways first breaks without a word. So
+    // the whole order is checked (out_of_order_error: read_osm sorts the file).
+    osmium::handler::CheckOrder order;
     osmium::io::Reader reader(*input, osmium::io::read_meta::no);
-    osmium::apply(reader, locations, collect, assembled);
+    osmium::apply(reader, order, locations, collect, assembled);
     reader.close();
   } else {
     osmium::apply(sorted->objects.begin(), sorted->objects.end(), locations, collect, assembled);

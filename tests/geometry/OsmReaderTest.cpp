@@ -75,13 +75,15 @@ enum class Order {
   /// and each kind in an order of its own (here descending ids); one node also comes twice,
   /// its older version misplaced by 1 km
   Overpass,
+  /// the ways, ascending, before the nodes, ascending: only the kinds out of order
+  WaysFirst,
 };
 
 std::string sample_osm(Order order = Order::Sorted) {
   std::string nodes, s;
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 12; ++j)
-      nodes = order == Order::Sorted ? nodes + node(i, j) : node(i, j) + nodes;
+      nodes = order == Order::Overpass ? node(i, j) + nodes : nodes + node(i, j);
   if (order == Order::Overpass)
     nodes += "  <node id=\"1000\" version=\"0\" lat=\"60.18\" lon=\"24.94\"/>\n";
   std::vector<std::string> ways, relations;
@@ -124,7 +126,7 @@ std::string sample_osm(Order order = Order::Sorted) {
     std::reverse(relations.begin(), relations.end());
   }
   for (const std::string& w : ways) s += w;
-  s = order == Order::Overpass ? s + nodes : nodes + s;
+  s = order == Order::Sorted ? nodes + s : s + nodes;
   for (const std::string& r : relations) s += r;
   return "<?xml version=\"1.0\"?>\n<osm version=\"0.6\" generator=\"test\">\n" + s + "</osm>\n";
 }
@@ -174,34 +176,38 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
 // and street the same, the newest version of a node that comes twice, and a warning.
 TEST(OsmReader, UnsortedOverpassExportGivesTheCityOfTheSortedFile) {
   const std::string sorted_path = write_temp("sorted.osm", sample_osm());
-  const std::string overpass_path = write_temp("overpass.osm", sample_osm(Order::Overpass));
   ReadOptions options;
   options.default_height = 10;
   const City sorted = read_city({sorted_path}, options);
-  const City overpass = read_city({overpass_path}, options);
-  ASSERT_EQ(overpass.objects.size(), sorted.objects.size());
-  EXPECT_EQ(overpass.frame.origin_lat, sorted.frame.origin_lat);
-  EXPECT_EQ(overpass.frame.origin_lon, sorted.frame.origin_lon);
-  for (const CityObject& o : sorted.objects) {
-    const CityObject* same = find(overpass, o.source_id);
-    ASSERT_NE(same, nullptr) << o.source_id;
-    EXPECT_EQ(same->bbox.zmax, o.bbox.zmax) << o.source_id;
-    ASSERT_EQ(same->footprint.size(), o.footprint.size()) << o.source_id;
-    for (std::size_t k = 0; k < o.footprint.size(); ++k)
-      EXPECT_EQ(area(same->footprint[k]), area(o.footprint[k])) << o.source_id;
-    EXPECT_EQ(same->bbox.xy.min.x, o.bbox.xy.min.x) << o.source_id;
-    EXPECT_EQ(same->bbox.xy.max.y, o.bbox.xy.max.y) << o.source_id;
-  }
-  EXPECT_EQ(overpass.streets.lines.size(), sorted.streets.lines.size());
-  EXPECT_EQ(overpass.streets.areas.size(), sorted.streets.areas.size());
-  EXPECT_TRUE(mentions(overpass.report.warnings, overpass_path, "not sorted by type and id"));
   EXPECT_FALSE(mentions(sorted.report.warnings, sorted_path, "not sorted"));
-  // The assembly's own reports are there once, not twice (the streaming attempt is dropped).
-  EXPECT_EQ(std::count_if(overpass.report.warnings.begin(), overpass.report.warnings.end(),
-                          [](const std::string& w) { return w.find("r22") != std::string::npos; }),
-            1);
+  for (const Order order : {Order::Overpass, Order::WaysFirst}) {
+    SCOPED_TRACE(order == Order::Overpass ? "Overpass order" : "ways first");
+    const std::string overpass_path = write_temp("overpass.osm", sample_osm(order));
+    const City overpass = read_city({overpass_path}, options);
+    ASSERT_EQ(overpass.objects.size(), sorted.objects.size());
+    EXPECT_EQ(overpass.frame.origin_lat, sorted.frame.origin_lat);
+    EXPECT_EQ(overpass.frame.origin_lon, sorted.frame.origin_lon);
+    for (const CityObject& o : sorted.objects) {
+      const CityObject* same = find(overpass, o.source_id);
+      ASSERT_NE(same, nullptr) << o.source_id;
+      EXPECT_EQ(same->bbox.zmax, o.bbox.zmax) << o.source_id;
+      ASSERT_EQ(same->footprint.size(), o.footprint.size()) << o.source_id;
+      for (std::size_t k = 0; k < o.footprint.size(); ++k)
+        EXPECT_EQ(area(same->footprint[k]), area(o.footprint[k])) << o.source_id;
+      EXPECT_EQ(same->bbox.xy.min.x, o.bbox.xy.min.x) << o.source_id;
+      EXPECT_EQ(same->bbox.xy.max.y, o.bbox.xy.max.y) << o.source_id;
+    }
+    EXPECT_EQ(overpass.streets.lines.size(), sorted.streets.lines.size());
+    EXPECT_EQ(overpass.streets.areas.size(), sorted.streets.areas.size());
+    EXPECT_TRUE(mentions(overpass.report.warnings, overpass_path, "not sorted by type and id"));
+    // The assembly's own reports are there once, not twice (the streaming attempt is dropped).
+    EXPECT_EQ(
+        std::count_if(overpass.report.warnings.begin(), overpass.report.warnings.end(),
+                      [](const std::string& w) { return w.find("r22") != std::string::npos; }),
+        1);
+    fs::remove(overpass_path);
+  }
   fs::remove(sorted_path);
-  fs::remove(overpass_path);
 }
 
 // The OSM XML file at `osm_path` written as the Overpass API writes JSON, by osmium's reading of
