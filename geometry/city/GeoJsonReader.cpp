@@ -66,7 +66,6 @@ std::string feature_id(const Json& feature, std::size_t index) {
   return "#" + std::to_string(index);
 }
 
-// A geometry's polygons as raw coordinate rings: [[[x, y], ...], [hole], ...].
 // The polygons of a Polygon, a MultiPolygon or a GeometryCollection (its polygonal members, at
 // any depth: exports of OSM relations write them so), each as given: an array of rings, maybe
 // empty. Throws BadStructure for coordinates that are no array.

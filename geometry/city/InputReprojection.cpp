@@ -59,6 +59,15 @@ void collect_positions(Json& node, std::vector<Json*>& out) {
   for (Json& child : node) collect_positions(child, out);
 }
 
+// The positions of a GeoJSON geometry, a GeometryCollection's members' included (the reader
+// takes their polygons).
+void geometry_positions(Json& geometry, std::vector<Json*>& out) {
+  if (!geometry.is_object()) return;
+  if (geometry.contains("coordinates")) collect_positions(geometry["coordinates"], out);
+  if (geometry.contains("geometries") && geometry["geometries"].is_array())
+    for (Json& member : geometry["geometries"]) geometry_positions(member, out);
+}
+
 // Transforms x, y in place; throws naming `file` and `what` where PROJ cannot.
 void transform_all(Reprojection& r, std::vector<double>& x, std::vector<double>& y,
                    const std::string& file, const char* what) {
@@ -187,15 +196,14 @@ void reproject_cityjson(Json& doc, Reprojection& r, const std::string& file) {
 
 void reproject_geojson(Json& doc, Reprojection& r, const std::string& file) {
   std::vector<Json*> positions;
-  auto geometry_positions = [&](Json& feature) {
-    if (feature.is_object() && feature.contains("geometry") && feature["geometry"].is_object() &&
-        feature["geometry"].contains("coordinates"))
-      collect_positions(feature["geometry"]["coordinates"], positions);
+  auto feature_positions = [&](Json& feature) {
+    if (feature.is_object() && feature.contains("geometry"))
+      geometry_positions(feature["geometry"], positions);
   };
   if (doc.contains("features") && doc["features"].is_array())
-    for (Json& f : doc["features"]) geometry_positions(f);
+    for (Json& f : doc["features"]) feature_positions(f);
   else
-    geometry_positions(doc);  // a single Feature
+    feature_positions(doc);  // a single Feature
   std::vector<double> x, y;
   x.reserve(positions.size()), y.reserve(positions.size());
   for (const Json* p : positions) {

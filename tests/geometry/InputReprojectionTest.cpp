@@ -63,6 +63,27 @@ TEST(InputReprojection, StatePlaneInFeetReadsInMetres) {
   EXPECT_DOUBLE_EQ(b.zmax - b.zmin, 15.0);  // a GeoJSON height is a property, in metres
 }
 
+// A GeometryCollection's polygon is transformed as a Polygon is: the same square in the same
+// place.
+TEST(InputReprojection, GeometryCollectionMembersAreTransformedToo) {
+  const std::string plain = square_geojson("urn:ogc:def:crs:EPSG::2263", 987000, 211000, 100);
+  std::string collection = plain;
+  const std::string polygon = R"("geometry": {"type": "Polygon",)";
+  const auto at = collection.find(polygon);
+  ASSERT_NE(at, std::string::npos);
+  collection.replace(at, polygon.size(),
+                     R"("geometry": {"type": "GeometryCollection", "geometries": [{"type": )"
+                     R"("Polygon",)");
+  ASSERT_EQ(collection.substr(collection.size() - 6), "]]}}]}");
+  collection.replace(collection.size() - 6, 6, "]]}]}}]}");
+  const City a = read_city_text(plain, "ft.json");
+  const City b = read_city_text(collection, "ft.json");
+  expect_transformed(b, "EPSG:2263 (in US survey foot)");
+  EXPECT_NEAR(footprint_area(b), footprint_area(a), 1e-9 * footprint_area(a));
+  EXPECT_DOUBLE_EQ(b.frame.origin_lat, a.frame.origin_lat);
+  EXPECT_DOUBLE_EQ(b.frame.origin_lon, a.frame.origin_lon);
+}
+
 TEST(InputReprojection, WebMercatorReadsInTrueMetres) {
   // Web Mercator is the spherical formula on WGS84 lon/lat: northing y lies at latitude
   // 2·atan(exp(y/a)) − π/2, where one of its "metres" is cos(latitude) true metres (to the
