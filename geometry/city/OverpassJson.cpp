@@ -12,6 +12,7 @@
 //    since the assembler joins rings by their nodes' locations, not by their ids.
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <osmium/builder/osm_object_builder.hpp>
 #include <osmium/memory/buffer.hpp>
 #include <osmium/osm/location.hpp>
@@ -25,6 +26,20 @@
 namespace urbanpvs::geometry::detail {
 namespace {
 
+// Ids as OSM has them, far inside 64 bits (below 2^40 today): larger ones are refused, so that
+// numbering new nodes above every id cannot overflow.
+constexpr std::int64_t kMaxId = std::int64_t{1} << 60;
+
+std::optional<std::int64_t> osm_id(const Json& v) {
+  if (!v.is_number_integer()) return std::nullopt;
+  if (v.is_number_unsigned())
+    return v.get<std::uint64_t>() < static_cast<std::uint64_t>(kMaxId)
+               ? std::optional<std::int64_t>(static_cast<std::int64_t>(v.get<std::uint64_t>()))
+               : std::nullopt;
+  const std::int64_t id = v.get<std::int64_t>();
+  return id > -kMaxId && id < kMaxId ? std::optional<std::int64_t>(id) : std::nullopt;
+}
+
 class OverpassElements {
  public:
   OverpassElements(const Json& elements, const std::string& file)
@@ -34,13 +49,13 @@ class OverpassElements {
       if (!e.is_object() || !e.contains("type") || !e["type"].is_string() || !e.contains("id") ||
           !e["id"].is_number_integer())
         fail(k, "is not an object with a \"type\" and an integer \"id\"");
-      const std::int64_t id = e["id"].get<std::int64_t>();
+      const std::int64_t id = integer(k, e["id"], "id");
       next_node_ = std::max(next_node_, id + 1);
       if (e["type"] == "way") {
         full_ways_.insert(id);
         if (e.contains("nodes") && e["nodes"].is_array())
           for (const Json& n : e["nodes"])
-            if (n.is_number_integer()) next_node_ = std::max(next_node_, n.get<std::int64_t>() + 1);
+            next_node_ = std::max(next_node_, integer(k, n, "node id") + 1);
       }
     }
   }
@@ -70,8 +85,9 @@ class OverpassElements {
   }
 
   std::int64_t integer(std::size_t k, const Json& v, const char* what) const {
-    if (!v.is_number_integer()) fail(k, std::string(what) + " is not an integer");
-    return v.get<std::int64_t>();
+    const std::optional<std::int64_t> id = osm_id(v);
+    if (!id) fail(k, std::string(what) + " is not an integer below 2^60 in size: " + v.dump());
+    return *id;
   }
 
   // A {"lat": .., "lon": ..} position; an invalid location for null (a node outside the box

@@ -323,6 +323,14 @@ TEST(OsmReader, BrokenOverpassJsonIsRefusedNamingTheElement) {
   EXPECT_NE(
       refusal(R"([{"type": "node", "id": 1, "lat": 100, "lon": 2}])").find("lat/lon out of range"),
       std::string::npos);
+  // Ids beyond what OSM uses are refused before new nodes are numbered above them.
+  EXPECT_NE(refusal(R"([{"type": "node", "id": 9223372036854775807, "lat": 1, "lon": 2}])")
+                .find("elements[0]: unexpected structure: id is not an integer below 2^60 in size: "
+                      "9223372036854775807"),
+            std::string::npos);
+  EXPECT_NE(refusal(R"([{"type": "way", "id": 5, "nodes": [18446744073709551615]}])")
+                .find("node id is not an integer below 2^60"),
+            std::string::npos);
   EXPECT_NE(refusal(R"([{"type": "way", "id": 5, "nodes": [1, 2], "geometry": [null]}])")
                 .find("one position per node"),
             std::string::npos);
