@@ -70,13 +70,14 @@ int run_on_city_and_pvs(const char* tool, std::vector<std::string> inputs,
       std::fprintf(stderr, "%s: %s: cannot load: %s\n", tool, pvs_path.c_str(), error.detail);
       return exit_code::for_load(error.status);
     }
-    // The ground truth is of the city as read now: read otherwise than for the bake (a default
-    // height the bake had and this run lacks), it is another city, and what the bake hid behind
-    // buildings this run cannot see would be reported as misses.
+    // The ground truth is of the city as read now. Read otherwise than for the bake it may be
+    // another city (a default height the bake had and this run lacks makes buildings
+    // transparent, and what the bake hid behind them shows up as misses); settings that shape
+    // only the occluders (--sloped-roofs, --roof-step) change nothing here, but are named too.
     for (const std::string& d : reading_differences(read, file))
       std::fprintf(stderr,
-                   "%s: warning: %s was baked with %s: the ground truth is of the city read "
-                   "otherwise; give the bake's reading options\n",
+                   "%s: warning: %s was baked with %s; read the city with the bake's reading "
+                   "options, or the ground truth may be of another city\n",
                    tool, pvs_path.c_str(), d.c_str());
     return work(city, file);
   } catch (const geometry::InputError& e) {
