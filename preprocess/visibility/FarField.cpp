@@ -23,6 +23,15 @@ void set_bit(std::vector<std::uint64_t>& bits, std::uint32_t k) {
 
 // A sloped top that rises at least this much per metre (14°): a pitched roof face, a hillside;
 // not the drainage fall of a flat roof, whose walls all stand about as high as its top.
+// Such tops stay out of the horizons. Rising away from a sample, a face shows it mostly its low
+// side: its walls that face the sample are eaves, which the block's level below holds too (its
+// prism is cut at the lowest roof point, thesis 7.3.2). Falling away, its near wall is a ridge,
+// and that hides much behind a pitched roof, but so does the exact sight line (points_hidden),
+// and on pitched roofs the walls of every face cost the sweeps more than tracing what only the
+// faces hide. Nearly flat faces (real LoD2.2 roofs have many) are kept: they hide like levels.
+// The PVS does not depend on the horizon: a pixel centre that it leaves open is traced exactly
+// past every occluder, faces included, so a lower horizon costs sight lines, never hidden
+// objects (README, "Steep sloped tops stay out of the horizons").
 constexpr double kSteepTop = 0.25;
 
 // Wraps a stamp; clears the marks it stamps when it comes round to 0.
@@ -32,25 +41,11 @@ void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uin
   stamp = 1;
 }
 
-// Whether `o`'s top rises away from `sample` (uphill from the sample towards its middle). Such a
-// top shows the sample mostly its low side: the walls that face the sample are a roof face's
-// eaves, which the block's level below it holds too (its prism is cut at the lowest roof point,
-// thesis 7.3.2), and the sides that rise from them; its high side faces away (a ridge reaches
-// the horizon as the near wall of the face beyond it, thesis 4.2.1). So the horizon leaves out
-// steep tops that rise away: fewer walls to add, for little that it loses. The PVS does not depend
-// on the horizon: a pixel centre that it leaves open is traced exactly past every occluder
-// (points_hidden), so a lower horizon costs sight lines, never hidden objects (README, "Sloped tops
-// that rise away").
-bool rises_away(const geometry::Occluder& o, const Vec3& sample) {
-  const Vec2 middle = 0.5 * (o.bounds.min + o.bounds.max);
-  return geometry::dot(o.slope, middle - Vec2{sample.x, sample.y}) > 0;
-}
-
 }  // namespace
 
 FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops tops)
     : scene_(scene),
-      leave_out_rising_(tops == HorizonTops::AllButSteepRisingAway),
+      leave_out_steep_(tops == HorizonTops::AllButSteep),
       far_visible_(scene.city().objects.size(), 0),
       asked_(scene.city().objects.size(), 0),
       seen_in_sweep_(scene.city().objects.size(), 0) {
@@ -297,7 +292,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
         if (h.hides(n.box)) continue;
         for (std::uint32_t k = 0; k < n.count; ++k) {
           const std::uint32_t o = tree.items()[n.first + k];
-          if (leave_out_rising_ && steep_[o] && rises_away(scene_.occluders()[o], sample)) continue;
+          if (leave_out_steep_ && steep_[o]) continue;
           push(h.distance_to(tree.box(o).xy), kOccluder, o);
         }
         for (std::int32_t child : n.child)

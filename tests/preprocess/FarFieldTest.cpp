@@ -3,7 +3,7 @@
 // neither may change a PVS. The far field that keeps answers is compared with one that keeps
 // none, over cells taken in random order with random open sets (as the near maps would leave
 // them); the horizon's query that leaves the sweep as it is gives the answers of the one that
-// moves it; horizons that leave out steep sloped tops rising away give the answers of horizons
+// moves it; horizons that leave out steep sloped tops give the answers of horizons
 // that take every top; and the Hilbert order is a permutation that walks from neighbour to
 // neighbour.
 #include <gtest/gtest.h>
@@ -117,7 +117,7 @@ const BakeScene& sloped_scene() {
   return s;
 }
 
-TEST(FarField, SteepTopsRisingAwayLeftOutOfTheHorizonsGiveTheSameObjectsWithFewerWalls) {
+TEST(FarField, SteepTopsLeftOutOfTheHorizonsGiveTheSameObjectsWithFewerWalls) {
   const BakeScene& s = sloped_scene();
   std::size_t steep = 0;
   for (const geometry::Occluder& o : s.occluders())

@@ -9,8 +9,8 @@
 // are traced exactly (SightLine), so the far field never hides what the brute-force map shows.
 // Occluders far from a sample enter its horizon by their far outlines (BakeScene::
 // horizon_occluder: a polygon inside each, with fewer walls); a part of an occluder hides no
-// more than the whole, and the sight lines keep every wall. Steep sloped tops that rise away from
-// a sample stay out of its horizon (their walls that face it are mostly eaves the levels hold).
+// more than the whole, and the sight lines keep every wall. Steep sloped tops (pitched roof
+// faces) stay out of the horizons: what only they hide is left to the sight lines.
 #pragma once
 
 #include <cstdint>
@@ -35,15 +35,15 @@ namespace urbanpvs::preprocess {
 class FarField {
  public:
   /// Which occluders the horizons take. The PVS is the same either way (a pixel centre the
-  /// horizon leaves open is traced exactly past every occluder); the time is not: steep sloped
-  /// tops that rise away from a sample add walls that rarely raise its horizon (README, "Sloped
-  /// tops that rise away").
-  enum class HorizonTops { AllButSteepRisingAway, All };
+  /// horizon leaves open is traced exactly past every occluder); the time is not: the walls of
+  /// steep sloped tops (pitched roof faces) cost the sweeps more than tracing what only they hide
+  /// (README, "Steep sloped tops stay out of the horizons").
+  enum class HorizonTops { AllButSteep, All };
 
   /// Keeps the answers of up to `kept_samples` samples (0: none); fewer when one sample's
   /// answers (two bits per object of the city) would make them take more than kKeptBytes.
   explicit FarField(const BakeScene& scene, std::size_t kept_samples = kKeptSamples,
-                    HorizonTops tops = HorizonTops::AllButSteepRisingAway);
+                    HorizonTops tops = HorizonTops::AllButSteep);
 
   static constexpr std::size_t kKeptSamples = 256;
   static constexpr std::size_t kKeptBytes = std::size_t{32} << 20;
@@ -78,7 +78,7 @@ class FarField {
   SampleAnswers* keep(const Vec3& sample);
 
   const BakeScene& scene_;
-  bool leave_out_rising_;
+  bool leave_out_steep_;
   SampleHorizon horizon_;
   std::vector<Event> events_;
   std::vector<std::uint32_t> open_below_;    ///< asked objects per object-quadtree node
