@@ -45,7 +45,6 @@ void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uin
 
 FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops tops)
     : scene_(scene),
-      leave_out_steep_(tops == HorizonTops::AllButSteep),
       far_visible_(scene.city().objects.size(), 0),
       asked_(scene.city().objects.size(), 0),
       seen_in_sweep_(scene.city().objects.size(), 0) {
@@ -56,9 +55,14 @@ FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops
     a.asked.assign(words, 0);
     a.seen.assign(words, 0);
   }
-  steep_.reserve(scene.occluders().size());
-  for (const geometry::Occluder& o : scene.occluders())
-    steep_.push_back(std::hypot(o.slope.x, o.slope.y) >= kSteepTop ? 1 : 0);
+  std::vector<geometry::Box3> horizon_boxes;
+  for (std::uint32_t o = 0; o < scene.occluders().size(); ++o) {
+    const Vec2 slope = scene.occluders()[o].slope;
+    if (tops == HorizonTops::AllButSteep && std::hypot(slope.x, slope.y) >= kSteepTop) continue;
+    horizon_ids_.push_back(o);
+    horizon_boxes.push_back(scene.occluder_index().box(o));
+  }
+  horizon_tree_ = BoxQuadtree(horizon_boxes);
   const BoxQuadtree& tree = scene.object_index();
   const auto& nodes = tree.nodes();
   parent_.assign(nodes.size(), -1);
@@ -214,7 +218,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
   };
   const auto& objects = scene_.city().objects;
   const std::vector<geometry::Ring>& outlines = scene_.object_outlines();
-  const BoxQuadtree& tree = scene_.occluder_index();
+  const BoxQuadtree& tree = scene_.occluder_index();  // every occluder, for the sight lines
   // The brute-force map decides an object by the centres of the pixels its outline touches
   // (thesis 7.2: with ε >= k·√2/2 a pixel centre speaks for the whole pixel). The horizons test
   // the box of the centres its box touches, every point of it, and where that fails the
@@ -281,27 +285,27 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
       if (kind != kNode && kind != kOccluder) ++object_events;
     };
     push(h.distance_to(node_box(0).xy), kObjectNode, 0);
-    push(h.distance_to(tree.nodes()[0].box.xy), kNode, 0);
+    if (!horizon_tree_.nodes().empty())
+      push(h.distance_to(horizon_tree_.nodes()[0].box.xy), kNode, 0);
     while (object_events > 0 && !heap.empty()) {
       std::pop_heap(heap.begin(), heap.end(), later);
       const Event e = heap.back();
       heap.pop_back();
       if (e.kind != kNode && e.kind != kOccluder) --object_events;
       if (e.kind == kNode) {
-        const BoxQuadtree::Node& n = tree.nodes()[e.id];
+        const BoxQuadtree::Node& n = horizon_tree_.nodes()[e.id];
         if (h.hides(n.box)) continue;
         for (std::uint32_t k = 0; k < n.count; ++k) {
-          const std::uint32_t o = tree.items()[n.first + k];
-          if (leave_out_steep_ && steep_[o]) continue;
-          push(h.distance_to(tree.box(o).xy), kOccluder, o);
+          const std::uint32_t o = horizon_tree_.items()[n.first + k];
+          push(h.distance_to(horizon_tree_.box(o).xy), kOccluder, o);
         }
         for (std::int32_t child : n.child)
           if (child >= 0)
-            push(h.distance_to(tree.nodes()[static_cast<std::size_t>(child)].box.xy), kNode,
-                 static_cast<std::uint32_t>(child));
+            push(h.distance_to(horizon_tree_.nodes()[static_cast<std::size_t>(child)].box.xy),
+                 kNode, static_cast<std::uint32_t>(child));
       } else if (e.kind == kOccluder) {
-        if (h.hides(tree.box(e.id))) continue;
-        h.add(scene_.horizon_occluder(e.id, e.distance));
+        if (h.hides(horizon_tree_.box(e.id))) continue;
+        h.add(scene_.horizon_occluder(horizon_ids_[e.id], e.distance));
         ++c.occluders_far_field;
       } else if (e.kind == kObjectNode) {
         if (open_below_[e.id] == 0 || h.hides_as_is(node_box(e.id))) continue;

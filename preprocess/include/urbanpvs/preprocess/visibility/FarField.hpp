@@ -10,7 +10,8 @@
 // Occluders far from a sample enter its horizon by their far outlines (BakeScene::
 // horizon_occluder: a polygon inside each, with fewer walls); a part of an occluder hides no
 // more than the whole, and the sight lines keep every wall. Steep sloped tops (pitched roof
-// faces) stay out of the horizons: what only they hide is left to the sight lines.
+// faces) stay out of the horizons: what only they hide is left to the sight lines. The sweeps
+// walk a quadtree of the occluders the horizons take, so those faces do not keep nodes open.
 #pragma once
 
 #include <cstdint>
@@ -78,7 +79,6 @@ class FarField {
   SampleAnswers* keep(const Vec3& sample);
 
   const BakeScene& scene_;
-  bool leave_out_steep_;
   SampleHorizon horizon_;
   std::vector<Event> events_;
   std::vector<std::uint32_t> open_below_;    ///< asked objects per object-quadtree node
@@ -87,7 +87,11 @@ class FarField {
   std::vector<std::int32_t> parent_;         ///< per object-quadtree node (-1: the root)
   std::vector<std::int32_t> node_of_;        ///< per object: the node holding it (-1: none)
   std::uint32_t depth_ = 0;                  ///< of the object quadtree
-  std::vector<std::uint8_t> steep_;          ///< per occluder: its top rises kSteepTop or more
+  // The occluders the horizons take, in a quadtree of their own: a node's box then holds only
+  // them, so steep faces that stay out of the horizons neither widen nor raise it, and whole
+  // nodes are found hidden sooner. Items index horizon_ids_, which names the scene's occluder.
+  BoxQuadtree horizon_tree_;
+  std::vector<std::uint32_t> horizon_ids_;
   // Marks valid where they equal the current call's or sweep's stamp (no clearing per call).
   std::vector<std::uint32_t> far_visible_, asked_, seen_in_sweep_;
   std::uint32_t stamp_ = 0, sweep_stamp_ = 0;
