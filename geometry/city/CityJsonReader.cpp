@@ -694,11 +694,15 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
   CityObject o;
   o.source_id = id;
   std::vector<PartResult> parts;
-  for (const auto& [pid, pobj] : members) {
+  for (std::uint32_t part = 0; part < members.size(); ++part) {
+    const auto& [pid, pobj] = members[part];
     PartResult r = read_part(objs.file, *pobj, pid, objs.options, objs.report);
     if (!r.box.xy.empty()) {
       o.bbox.extend(r.box);
-      for (Surface3& sf : r.surfaces) o.surfaces.push_back(std::move(sf));
+      for (Surface3& sf : r.surfaces) {
+        sf.part = part;
+        o.surfaces.push_back(std::move(sf));
+      }
       r.surfaces.clear();
       parts.push_back(std::move(r));
     }
@@ -712,6 +716,7 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
   objs.for_each_installation_surface(members, [&](Surface3 sf) {
     for (const auto& r : sf.rings)
       for (const Vertex& v : r) o.bbox.extend(Vec2{v[0], v[1]}, v[2]);
+    sf.part = Surface3::kInstallation;
     o.surfaces.push_back(std::move(sf));
   });
   o.ground_z = o.bbox.zmin;

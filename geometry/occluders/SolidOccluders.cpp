@@ -390,13 +390,12 @@ bool solid_shrinking_available() {
   return URBANPVS_HAVE_TETGEN != 0;
 }
 
-ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z, double epsilon,
-                         double step) {
+namespace {
+
+// shrink_solid for one closed solid (ε and step checked).
+ShrunkSolid shrink_closed(const std::vector<Surface3>& surfaces, double ground_z, double epsilon,
+                          double step) {
   ShrunkSolid result;
-  if (!(epsilon > 0) || !(step > 0)) {
-    result.declined = "ε and the level step must be positive";
-    return result;
-  }
   Box3 extent;
   for (const Surface3& s : surfaces)
     for (const auto& ring : s.rings)
@@ -503,6 +502,40 @@ ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z,
   }
   if (tops.empty()) result.declined = "no column stands in the solid at least ε from its outside";
   return result;
+}
+
+}  // namespace
+
+ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z, double epsilon,
+                         double step) {
+  if (!(epsilon > 0) || !(step > 0)) return {{}, 0, "ε and the level step must be positive"};
+  ShrunkSolid whole = shrink_closed(surfaces, ground_z, epsilon, step);
+  if (!whole.occluders.empty()) return whole;
+  // Parts that meet inside each other's faces (a dormer's closed box standing on a roof face
+  // that is not cut around it) do not make one solid: their coplanar faces overlap, or a
+  // part's edge ends inside a face, and the whole gives nothing. Each part alone may close. A
+  // part lies in the building, so what its shrinking keeps is inside the building at least ε
+  // from the part's outside, and so from the building's: the union of the parts' occluders is
+  // conservative, only smaller than the whole's would be by the ε each part loses at the faces
+  // it shares. Installations give no occluder (no volume a prism from the ground may fill).
+  std::vector<std::uint32_t> parts;
+  for (const Surface3& s : surfaces)
+    if (s.part != Surface3::kInstallation) parts.push_back(s.part);
+  std::sort(parts.begin(), parts.end());
+  parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
+  if (parts.size() < 2) return whole;
+  ShrunkSolid joined;
+  std::vector<Surface3> alone;
+  for (const std::uint32_t part : parts) {
+    alone.clear();
+    for (const Surface3& s : surfaces)
+      if (s.part == part) alone.push_back(s);
+    ShrunkSolid r = shrink_closed(alone, ground_z, epsilon, step);
+    joined.exterior_tetrahedra += r.exterior_tetrahedra;
+    for (Occluder& o : r.occluders) joined.occluders.push_back(std::move(o));
+  }
+  if (joined.occluders.empty()) return whole;
+  return joined;
 }
 
 }  // namespace urbanpvs::geometry

@@ -227,6 +227,36 @@ TEST_F(SolidOccluders, AnArcadeKeepsNothingOverThePassage) {
   EXPECT_EQ(top_at(s, {24, 5}, 0), 12);
 }
 
+TEST_F(SolidOccluders, PartsThatMeetInsideAFaceAreShrunkAlone) {
+  // The arcade of the test above, and a dormer: a closed box standing on its roof, its floor
+  // inside the roof face, which is not cut around it (as Zürich's parts are given).
+  const Solid bar = extruded_profile(
+      {{0, 0}, {12, 0}, {12, 4}, {18, 4}, {18, 0}, {30, 0}, {30, 12}, {0, 12}}, 10);
+  Solid building = bar;
+  for (Surface3 f : box(4, 3, 8, 7, 12, 14)) {
+    f.part = 1;
+    building.push_back(f);
+  }
+  Solid as_one = building;
+  for (Surface3& f : as_one) f.part = 0;
+  const ShrunkSolid whole = shrink_solid(as_one, 0, 1, 1);
+  EXPECT_TRUE(whole.occluders.empty()) << "the parts' overlapping faces make no solid";
+  EXPECT_FALSE(whole.declined.empty());
+  const ShrunkSolid s = shrink_solid(building, 0, 1, 1);
+  ASSERT_TRUE(s.declined.empty()) << s.declined;
+  // The dormer holds nothing up from the ground; the bar alone gives what it gives alone.
+  expect_conservative(bar, s, 0, 1);
+  expect_conservative_at_edges(bar, s, 0, 1);
+  EXPECT_EQ(top_at(s, {15, 5}, 0), 0) << "the passage is open from the ground up";
+  EXPECT_EQ(top_at(s, {6, 5}, 0), 12);
+  EXPECT_EQ(top_at(s, {24, 5}, 0), 12);
+  const ShrunkSolid alone = shrink_solid(bar, 0, 1, 1);
+  double area_alone = 0, area_parts = 0;
+  for (const Occluder& o : alone.occluders) area_alone += area(o.shape);
+  for (const Occluder& o : s.occluders) area_parts += area(o.shape);
+  EXPECT_NEAR(area_parts, area_alone, 1e-9);
+}
+
 TEST_F(SolidOccluders, AnOverhangKeepsTheColumnsUnderTheGroundFloor) {
   // Ground floor x in [0, 10], 4 m high; upper floors overhang to x = 14, up to 12 m.
   const Solid solid = extruded_profile({{0, 0}, {10, 0}, {10, 4}, {14, 4}, {14, 12}, {0, 12}}, 10);

@@ -65,6 +65,11 @@ struct Surface3 {
   /// False for a surface that bounds where the building may be, not where it surely is (a roof
   /// of unknown shape above the eaves): a target of validation, never a blocker.
   bool blocks = true;
+  /// Which part of its building the surface bounds: for CityJSON and CityGML the building's
+  /// parts in file order (0: the Building itself), kInstallation for an installation's; 0 for
+  /// input read as prisms. The 3D route shrinks parts alone where the whole does not close.
+  std::uint32_t part = 0;
+  static constexpr std::uint32_t kInstallation = 0xFFFFFFFFu;
 };
 
 /// One building (with all its parts): the unit a PVS lists.

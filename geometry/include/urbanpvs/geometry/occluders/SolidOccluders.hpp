@@ -46,7 +46,9 @@ bool overhangs(const std::vector<Surface3>& surfaces, double ground_z);
 bool solid_shrinking_available();
 
 /// Shrinks the solid bounded by the blocking `surfaces` (one building, all its parts: faces
-/// shared by two parts are kept once) by `epsilon` (m, > 0) in the horizontal directions
+/// shared by two parts are kept once; where the parts do not close as one solid, each part
+/// (Surface3::part) is shrunk alone and their occluders are joined) by `epsilon` (m, > 0) in
+/// the horizontal directions
 /// (thesis 7.4: samples lie on the top face of a cell, so the cylinder of radius ε suffices)
 /// and keeps its ground-standing part above `ground_z` as levels `step` (m, > 0) apart from
 /// ground_z up. Every point p of an occluder of top h has, within ε of p horizontally, only
