@@ -101,11 +101,15 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
   const CullMapGrid& area = scene_.area();
 
   std::vector<std::uint32_t> visible;
-  std::vector<std::uint32_t> pending;
+  // The objects the maps decided: few, near the cell. Every other object is left to a larger
+  // map or to the far field, which takes them as "all but these", so that no step's work
+  // grows with the size of the city.
+  std::vector<std::uint32_t> decided;
   std::vector<const geometry::Occluder*> render;
   std::optional<CullMap> previous;
   auto decide = [&](std::uint32_t object, bool is_visible) {
     object_decided_[object] = stamp_;
+    decided.push_back(object);
     if (is_visible) visible.push_back(object);
   };
 
@@ -114,8 +118,7 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
     const long long side = static_cast<long long>(options.initial_map) << std::min(step, 24);
     if (side > options.max_map && previous) {
       // Beyond the largest map the sample horizons decide what is still open.
-      for (std::uint32_t o : far_field_.visible(samples, pending, c)) visible.push_back(o);
-      for (std::uint32_t o : pending) object_decided_[o] = stamp_;
+      for (std::uint32_t o : far_field_.visible_all_but(samples, decided, c)) visible.push_back(o);
       break;
     }
     bool last = false;
@@ -188,24 +191,25 @@ std::vector<std::uint32_t> CellVisibility::hierarchical(std::uint32_t cell, Cell
     // occluders by the ε argument of 7.2, but it can hide an object that the brute-force map,
     // judging every pixel centre exactly, shows. Objects are left to the sample horizons,
     // which never do; occluders it drops above only make the next map lower.)
-    pending.clear();
-    object_tree.visit([](std::uint32_t, const BoxQuadtree::Node&) { return true; },
-                      [&](std::uint32_t o) {
-                        if (object_decided_[o] == stamp_) return;
-                        const geometry::Box3& b = objects[o].bbox;
-                        if (last || inside_map(grid, b.xy)) {
-                          const bool shown = !hidden_by(map, b, outlines[o]);
-                          ++c.objects_in_map;
-                          // Hidden without the sloped tops is hidden with them.
-                          if (!shown || !sloped_left_out) {
-                            decide(o, shown);
-                            return;
-                          }
-                        }
-                        pending.push_back(o);
-                      });
+    // Only nodes that meet the map (edges included) can hold an object inside it.
+    object_tree.visit(
+        [&](std::uint32_t, const BoxQuadtree::Node& n) {
+          const Box2& b = n.box.xy;
+          return last || (b.min.x <= bounds.max.x && bounds.min.x <= b.max.x &&
+                          b.min.y <= bounds.max.y && bounds.min.y <= b.max.y);
+        },
+        [&](std::uint32_t o) {
+          if (object_decided_[o] == stamp_) return;
+          const geometry::Box3& b = objects[o].bbox;
+          if (last || inside_map(grid, b.xy)) {
+            const bool shown = !hidden_by(map, b, outlines[o]);
+            ++c.objects_in_map;
+            // Hidden without the sloped tops is hidden with them.
+            if (!shown || !sloped_left_out) decide(o, shown);
+          }
+        });
     if (last) break;
-    if (pending.empty()) {
+    if (decided.size() == objects.size()) {
       ++c.early_breaks;
       break;
     }

@@ -2,6 +2,7 @@
 #include "urbanpvs/preprocess/visibility/FarField.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -19,6 +20,15 @@ bool bit(const std::vector<std::uint64_t>& bits, std::uint32_t k) {
 
 void set_bit(std::vector<std::uint64_t>& bits, std::uint32_t k) {
   bits[k >> 6] |= std::uint64_t{1} << (k & 63);
+}
+
+// Calls f(k) for every bit k set in `word` number w.
+template <class F>
+void for_each_bit(std::uint64_t word, std::size_t w, F&& f) {
+  while (word != 0) {
+    f(static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(std::countr_zero(word))));
+    word &= word - 1;
+  }
 }
 
 // A sloped top that rises at least this much per metre (14°): a pitched roof face, a hillside;
@@ -44,17 +54,18 @@ void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uin
 }  // namespace
 
 FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops tops)
-    : scene_(scene),
-      far_visible_(scene.city().objects.size(), 0),
-      asked_(scene.city().objects.size(), 0),
-      seen_in_sweep_(scene.city().objects.size(), 0) {
-  const std::size_t words = (scene.city().objects.size() + 63) / 64;
+    : scene_(scene), seen_in_sweep_(scene.city().objects.size(), 0) {
+  const std::size_t objects = scene.city().objects.size();
+  const std::size_t words = (objects + 63) / 64;
   const std::size_t bytes = std::max<std::size_t>(1, 2 * words * sizeof(std::uint64_t));
   answers_.resize(std::min(kept_samples, kKeptBytes / bytes));
   for (SampleAnswers& a : answers_) {
     a.asked.assign(words, 0);
     a.seen.assign(words, 0);
   }
+  open_.assign(words, 0);
+  found_.assign(words, 0);
+  ask_.assign(words, 0);
   std::vector<geometry::Box3> horizon_boxes;
   for (std::uint32_t o = 0; o < scene.occluders().size(); ++o) {
     const Vec2 slope = scene.occluders()[o].slope;
@@ -63,62 +74,46 @@ FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops
     horizon_boxes.push_back(scene.occluder_index().box(o));
   }
   horizon_tree_ = BoxQuadtree(horizon_boxes);
+  // Bits in depth-first order of the object quadtree: a node's items, then its children's.
+  // Objects the tree does not hold (none are met by a sweep) take the bits after its runs.
   const BoxQuadtree& tree = scene.object_index();
   const auto& nodes = tree.nodes();
-  parent_.assign(nodes.size(), -1);
-  node_of_.assign(scene.city().objects.size(), -1);
-  std::vector<std::uint32_t> depth(nodes.size(), 1);
-  for (std::size_t id = 0; id < nodes.size(); ++id) {  // children come after their parent
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  position_.assign(objects, kNone);
+  run_.assign(nodes.size(), {});
+  std::uint32_t next = 0;
+  std::vector<std::pair<std::uint32_t, bool>> stack;  // node, and whether its children are done
+  if (!nodes.empty()) stack.push_back({0, false});
+  while (!stack.empty()) {
+    auto [id, done] = stack.back();
+    stack.pop_back();
     const BoxQuadtree::Node& n = nodes[id];
-    for (std::uint32_t k = 0; k < n.count; ++k)
-      node_of_[tree.items()[n.first + k]] = static_cast<std::int32_t>(id);
-    for (std::int32_t child : n.child)
-      if (child >= 0) {
-        parent_[static_cast<std::size_t>(child)] = static_cast<std::int32_t>(id);
-        depth[static_cast<std::size_t>(child)] = depth[id] + 1;
-      }
-    depth_ = std::max(depth_, depth[id]);
+    if (done) {
+      run_[id].end = next;
+      continue;
+    }
+    run_[id].begin = next;
+    for (std::uint32_t k = 0; k < n.count; ++k) position_[tree.items()[n.first + k]] = next++;
+    stack.push_back({id, true});
+    for (int c = 3; c >= 0; --c)
+      if (n.child[c] >= 0) stack.push_back({static_cast<std::uint32_t>(n.child[c]), false});
   }
+  for (std::uint32_t& p : position_)
+    if (p == kNone) p = next++;
+  object_at_.assign(objects, 0);
+  for (std::uint32_t o = 0; o < objects; ++o) object_at_[position_[o]] = o;
 }
 
-void FarField::count_asked(std::span<const std::uint32_t> ask,
-                           std::span<const std::uint32_t> not_asked) {
-  const BoxQuadtree& tree = scene_.object_index();
-  const auto& nodes = tree.nodes();
-  // Counted afresh: every node and item once.
-  auto count = [&](std::vector<std::uint32_t>& out) {
-    out.assign(nodes.size(), 0);
-    for (std::size_t id = nodes.size(); id-- > 0;) {  // children come after their parent
-      const BoxQuadtree::Node& n = nodes[id];
-      std::uint32_t c = 0;
-      for (std::uint32_t k = 0; k < n.count; ++k)
-        c += asked_[tree.items()[n.first + k]] == sweep_stamp_ ? 1 : 0;
-      for (std::int32_t child : n.child)
-        if (child >= 0) c += out[static_cast<std::size_t>(child)];
-      out[id] = c;
-    }
-  };
-  // A new sweep: `ask` (and `also`) are the objects asked in it, nothing is seen yet.
-  auto begin_sweep = [&](std::span<const std::uint32_t> also) {
-    next_stamp(sweep_stamp_, {&asked_, &seen_in_sweep_});
-    for (std::uint32_t o : ask) asked_[o] = sweep_stamp_;
-    for (std::uint32_t o : also) asked_[o] = sweep_stamp_;
-  };
-  if (not_asked.size() * depth_ >= nodes.size() + tree.items().size()) {
-    begin_sweep({});
-    count(open_below_);
-    return;
-  }
-  if (call_counted_ != calls_) {  // the open objects are `ask` and `not_asked` together
-    begin_sweep(not_asked);
-    count(open_in_call_);
-    call_counted_ = calls_;
-  }
-  open_below_ = open_in_call_;
-  for (std::uint32_t o : not_asked)
-    for (std::int32_t id = node_of_[o]; id >= 0; id = parent_[static_cast<std::size_t>(id)])
-      --open_below_[static_cast<std::size_t>(id)];
-  begin_sweep({});
+bool FarField::any_asked(Run run) const {
+  if (run.begin >= run.end) return false;
+  const std::uint32_t first = run.begin >> 6, last = (run.end - 1) >> 6;
+  const std::uint64_t head = ~std::uint64_t{0} << (run.begin & 63);
+  const std::uint64_t tail = ~std::uint64_t{0} >> (63 - ((run.end - 1) & 63));
+  if (first == last) return (ask_[first] & head & tail) != 0;
+  if ((ask_[first] & head) != 0 || (ask_[last] & tail) != 0) return true;
+  for (std::uint32_t w = first + 1; w < last; ++w)
+    if (ask_[w] != 0) return true;
+  return false;
 }
 
 FarField::SampleAnswers* FarField::kept(const Vec3& sample) {
@@ -144,12 +139,28 @@ FarField::SampleAnswers* FarField::keep(const Vec3& sample) {
 }
 
 std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
-                                             std::span<const std::uint32_t> objects_open,
-                                             CellCounters& c) {
-  next_stamp(stamp_, {&far_visible_});
+                                             std::span<const std::uint32_t> open, CellCounters& c) {
+  std::fill(open_.begin(), open_.end(), 0);
+  for (std::uint32_t o : open) set_bit(open_, position_[o]);
+  return visible_open(samples, c);
+}
+
+std::vector<std::uint32_t> FarField::visible_all_but(std::span<const Vec3> samples,
+                                                     std::span<const std::uint32_t> decided,
+                                                     CellCounters& c) {
+  const std::size_t objects = position_.size();
+  std::fill(open_.begin(), open_.end(), ~std::uint64_t{0});
+  if (objects % 64 != 0) open_.back() = (std::uint64_t{1} << (objects % 64)) - 1;
+  for (std::uint32_t o : decided)
+    open_[position_[o] >> 6] &= ~(std::uint64_t{1} << (position_[o] & 63));
+  return visible_open(samples, c);
+}
+
+std::vector<std::uint32_t> FarField::visible_open(std::span<const Vec3> samples, CellCounters& c) {
   ++calls_;
   std::vector<std::uint32_t> found;
-  std::size_t open = objects_open.size();
+  std::size_t open = 0;
+  for (std::uint64_t w : open_) open += static_cast<std::size_t>(std::popcount(w));
   c.objects_far_field += open;
   // No occluder (every building may vanish when shrunk by ε, thesis 7.2): no wall casts a
   // shadow (thesis 4.2.1), so nothing is hidden from any sample and every open object is
@@ -157,12 +168,14 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
   // open with no object tree or no sample to sweep from, nothing proves it hidden.
   if (open > 0 && (scene_.occluder_index().nodes().empty() ||
                    scene_.object_index().nodes().empty() || samples.empty())) {
-    return {objects_open.begin(), objects_open.end()};
+    for (std::size_t w = 0; w < open_.size(); ++w)
+      for_each_bit(open_[w], w, [&](std::uint32_t k) { found.push_back(object_at_[k]); });
+    return found;
   }
-  auto mark_visible = [&](std::uint32_t o) {
-    if (far_visible_[o] == stamp_) return;
-    far_visible_[o] = stamp_;
-    found.push_back(o);
+  std::fill(found_.begin(), found_.end(), 0);
+  auto mark_visible = [&](std::uint32_t k) {  // by bit
+    found_[k >> 6] |= std::uint64_t{1} << (k & 63);
+    found.push_back(object_at_[k]);
     --open;
   };
   // What kept samples are known to see is visible from the cell: the union over samples.
@@ -170,8 +183,8 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
   for (const Vec3& s : samples) known_.push_back(kept(s));
   for (const SampleAnswers* a : known_)
     if (a)
-      for (std::uint32_t o : objects_open)
-        if (bit(a->seen, o)) mark_visible(o);
+      for (std::size_t w = 0; w < open_.size(); ++w)
+        for_each_bit(a->seen[w] & open_[w] & ~found_[w], w, mark_visible);
   // Each sample is asked what is still open and it has not answered yet; a sample that
   // answered all of that needs no sweep.
   // Samples with nothing kept first: they must be swept anyway, and what they see is then no
@@ -184,30 +197,30 @@ std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,
   for (std::size_t i : order_) {
     if (open == 0) break;
     SampleAnswers* a = known_[i];
-    ask_.clear();
-    not_asked_.clear();
-    for (std::uint32_t o : objects_open)
-      (far_visible_[o] != stamp_ && !(a && bit(a->asked, o)) ? ask_ : not_asked_).push_back(o);
-    if (ask_.empty()) {
+    std::uint64_t any = 0;
+    for (std::size_t w = 0; w < open_.size(); ++w) {
+      ask_[w] = open_[w] & ~found_[w] & (a ? ~a->asked[w] : ~std::uint64_t{0});
+      any |= ask_[w];
+    }
+    if (any == 0) {
       ++c.sweeps_spared;
       continue;
     }
     if (!a) a = known_[i] = keep(samples[i]);
     seen_.clear();
-    sweep(samples[i], ask_, not_asked_, c, seen_);
+    sweep(samples[i], c, seen_);
     if (a) {
-      for (std::uint32_t o : ask_) set_bit(a->asked, o);
-      for (std::uint32_t o : seen_) set_bit(a->seen, o);
+      for (std::size_t w = 0; w < open_.size(); ++w) a->asked[w] |= ask_[w];
+      for (std::uint32_t o : seen_) set_bit(a->seen, position_[o]);
     }
-    for (std::uint32_t o : seen_) mark_visible(o);
+    for (std::uint32_t o : seen_)
+      if (!bit(found_, position_[o])) mark_visible(position_[o]);
   }
   return found;
 }
 
-void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
-                     std::span<const std::uint32_t> not_asked, CellCounters& c,
-                     std::vector<std::uint32_t>& seen) {
-  count_asked(ask, not_asked);
+void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint32_t>& seen) {
+  next_stamp(sweep_stamp_, {&seen_in_sweep_});
   ++c.sample_sweeps;
   // An object is met at its nearest distance; when its box is not hidden as a whole, again at
   // its farthest, when every wall in front of any of its pixel centres has been added.
@@ -270,7 +283,7 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
     return b;
   };
   auto still_open = [&](std::uint32_t o) {
-    return asked_[o] == sweep_stamp_ && seen_in_sweep_[o] != sweep_stamp_;
+    return bit(ask_, position_[o]) && seen_in_sweep_[o] != sweep_stamp_;
   };
 
   std::vector<Event>& heap = events_;
@@ -308,14 +321,14 @@ void FarField::sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
         h.add(scene_.horizon_occluder(horizon_ids_[e.id], e.distance));
         ++c.occluders_far_field;
       } else if (e.kind == kObjectNode) {
-        if (open_below_[e.id] == 0 || h.hides_as_is(node_box(e.id))) continue;
+        if (!any_asked(run_[e.id]) || h.hides_as_is(node_box(e.id))) continue;
         const BoxQuadtree::Node& n = nodes[e.id];
         for (std::uint32_t k = 0; k < n.count; ++k) {
           const std::uint32_t o = object_tree.items()[n.first + k];
           if (still_open(o)) push(h.distance_to(centres_box(o).xy), kObject, o);
         }
         for (std::int32_t child : n.child)
-          if (child >= 0 && open_below_[static_cast<std::size_t>(child)] > 0)
+          if (child >= 0 && any_asked(run_[static_cast<std::size_t>(child)]))
             push(h.distance_to(node_box(static_cast<std::uint32_t>(child)).xy), kObjectNode,
                  static_cast<std::uint32_t>(child));
       } else if (e.kind == kObject) {

@@ -3,9 +3,9 @@
 // neither may change a PVS. The far field that keeps answers is compared with one that keeps
 // none, over cells taken in random order with random open sets (as the near maps would leave
 // them); the horizon's query that leaves the sweep as it is gives the answers of the one that
-// moves it; horizons that leave out steep sloped tops give the answers of horizons
-// that take every top; and the Hilbert order is a permutation that walks from neighbour to
-// neighbour.
+// moves it; horizons that leave out steep sloped tops give the answers of horizons that take
+// every top; the objects "all but the decided" give what their list gives; and the Hilbert
+// order is a permutation that walks from neighbour to neighbour.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -110,6 +110,37 @@ TEST(FarField, FewKeptSamplesStillGiveTheSameObjects) {
               sorted(fresh.visible(samples, open, counts)))
         << "cell " << cell;
   }
+}
+
+TEST(FarField, AllButTheDecidedGivesWhatTheListOfTheRestGives) {
+  // The bake passes the far field the objects its maps decided, and every other one is open:
+  // the same answers as the list of those others, with kept answers or without.
+  const BakeScene& s = scene();
+  const std::size_t objects = s.city().objects.size();
+  ASSERT_NE(objects % 64, 0u) << "the last word's unused bits are not exercised";
+  FarField keeping(s), fresh(s, 0);
+  CellCounters all_but_counts, list_counts;
+  std::mt19937_64 rng(5);
+  for (std::uint32_t cell = 0; cell < 80; ++cell) {
+    std::vector<std::uint32_t> shuffled(objects);
+    std::iota(shuffled.begin(), shuffled.end(), 0u);
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    // None decided, a few (as near a small cell), or most.
+    const std::size_t n = cell % 3 == 0 ? 0 : cell % 3 == 1 ? objects / 20 : objects * 9 / 10;
+    const std::vector<std::uint32_t> decided(shuffled.begin(),
+                                             shuffled.begin() + static_cast<std::ptrdiff_t>(n));
+    std::vector<std::uint32_t> rest(shuffled.begin() + static_cast<std::ptrdiff_t>(n),
+                                    shuffled.end());
+    std::sort(rest.begin(), rest.end());
+    const std::vector<Vec3> samples = s.samples(cell);
+    const std::size_t before = all_but_counts.objects_far_field;
+    const std::vector<std::uint32_t> a =
+        sorted(keeping.visible_all_but(samples, decided, all_but_counts));
+    ASSERT_EQ(all_but_counts.objects_far_field - before, rest.size()) << "cell " << cell;
+    ASSERT_EQ(a, sorted(fresh.visible(samples, rest, list_counts))) << "cell " << cell;
+    ASSERT_TRUE(std::includes(rest.begin(), rest.end(), a.begin(), a.end()));
+  }
+  EXPECT_GT(all_but_counts.sweeps_spared, 0u);
 }
 
 const BakeScene& sloped_scene() {

@@ -55,25 +55,36 @@ class FarField {
   /// sample_sweeps and sweeps_spared.
   std::vector<std::uint32_t> visible(std::span<const Vec3> samples,
                                      std::span<const std::uint32_t> open, CellCounters& counters);
+  /// As visible(), with every object of the city open but `decided` (distinct objects). The
+  /// work per call does not grow with the objects left open, only with the words of a bit per
+  /// object: a cell's small maps decide the few objects near it, and the rest are open.
+  std::vector<std::uint32_t> visible_all_but(std::span<const Vec3> samples,
+                                             std::span<const std::uint32_t> decided,
+                                             CellCounters& counters);
 
  private:
   struct Event {  ///< the sweep's queue: a node, occluder or object at its distance
     double distance;
     std::uint32_t kind, id;
   };
+  // Sets of objects are bits in the order of a depth-first walk of the object quadtree
+  // (position_), so that the objects below any node are one run of bits (run_): whether a node
+  // holds an object still asked is a scan of a few words, and a call's sets are word operations.
+  using Bits = std::vector<std::uint64_t>;
   struct SampleAnswers {  ///< per object of the city: asked this sample, and if so seen from it
     Vec3 sample{};
     std::uint64_t last_used = 0;  ///< the visible() call that last read it (0: free)
-    std::vector<std::uint64_t> asked, seen;
+    Bits asked, seen;
   };
-  /// The objects of `ask` that `sample` sees, in the order found; they are added to `seen`.
-  /// `ask` is this call's open objects less `not_asked`.
-  void sweep(const Vec3& sample, std::span<const std::uint32_t> ask,
-             std::span<const std::uint32_t> not_asked, CellCounters& counters,
-             std::vector<std::uint32_t>& seen);
-  /// open_below_ for `ask`: this call's counts of open objects (made by the first sweep) less
-  /// `not_asked` along their paths to the root, or counted afresh where that is cheaper.
-  void count_asked(std::span<const std::uint32_t> ask, std::span<const std::uint32_t> not_asked);
+  struct Run {
+    std::uint32_t begin = 0, end = 0;
+  };
+  /// The objects of open_ (less those already found) that `sample` sees, in the order found,
+  /// asking those of ask_; they are added to `seen`.
+  void sweep(const Vec3& sample, CellCounters& counters, std::vector<std::uint32_t>& seen);
+  /// visible() for the objects of open_.
+  std::vector<std::uint32_t> visible_open(std::span<const Vec3> samples, CellCounters& counters);
+  bool any_asked(Run run) const;
   SampleAnswers* kept(const Vec3& sample);
   /// A slot for `sample`'s answers, none read by this call; nullptr when every slot is.
   SampleAnswers* keep(const Vec3& sample);
@@ -81,24 +92,21 @@ class FarField {
   const BakeScene& scene_;
   SampleHorizon horizon_;
   std::vector<Event> events_;
-  std::vector<std::uint32_t> open_below_;    ///< asked objects per object-quadtree node
-  std::vector<std::uint32_t> open_in_call_;  ///< open objects per node (valid: call_counted_)
-  std::uint64_t call_counted_ = 0;           ///< the visible() call open_in_call_ is for
-  std::vector<std::int32_t> parent_;         ///< per object-quadtree node (-1: the root)
-  std::vector<std::int32_t> node_of_;        ///< per object: the node holding it (-1: none)
-  std::uint32_t depth_ = 0;                  ///< of the object quadtree
+  std::vector<std::uint32_t> position_;   ///< per object: its bit in the sets
+  std::vector<std::uint32_t> object_at_;  ///< per bit: its object
+  std::vector<Run> run_;                  ///< per object-quadtree node: the bits below it
   // The occluders the horizons take, in a quadtree of their own: a node's box then holds only
   // them, so steep faces that stay out of the horizons neither widen nor raise it, and whole
   // nodes are found hidden sooner. Items index horizon_ids_, which names the scene's occluder.
   BoxQuadtree horizon_tree_;
   std::vector<std::uint32_t> horizon_ids_;
-  // Marks valid where they equal the current call's or sweep's stamp (no clearing per call).
-  std::vector<std::uint32_t> far_visible_, asked_, seen_in_sweep_;
-  std::uint32_t stamp_ = 0, sweep_stamp_ = 0;
+  Bits open_, found_, ask_;  ///< this call's open objects, those found visible, a sweep's asked
+  std::vector<std::uint32_t> seen_in_sweep_;  ///< valid where equal to sweep_stamp_
+  std::uint32_t sweep_stamp_ = 0;
   std::vector<SampleAnswers> answers_;  ///< the kept samples
   std::uint64_t calls_ = 0;
   std::vector<SampleAnswers*> known_;  ///< per sample of the current call: its kept answers
-  std::vector<std::uint32_t> ask_, not_asked_, seen_;
+  std::vector<std::uint32_t> seen_;
   std::vector<std::size_t> order_;
 };
 
