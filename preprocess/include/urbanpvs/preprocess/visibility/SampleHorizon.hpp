@@ -96,6 +96,8 @@ class SampleHorizon {
                      std::uint32_t skip_mark, std::uint32_t mark);
   void insert(int bin, Entry e);
   void settle(int bin, double distance);
+  /// settle() over the unwrapped sectors first..last (fewer than kBins of them).
+  void settle_sectors(long long first, long long last, double distance);
   double slope_at(int bin, double distance) const;  ///< of the walls passed at `distance`
 
   Vec3 sample_;
@@ -103,6 +105,8 @@ class SampleHorizon {
   std::vector<Entry> settled_;  ///< per sector: the steepest passed wall (-infinity: none)
   std::vector<std::array<Entry, kSlots>> pending_;  ///< per sector: walls not yet passed
   std::vector<std::uint8_t> pending_count_;
+  /// per sector: no pending wall reaches nearer (a lower bound: walls dropped or folded leave it)
+  std::vector<double> first_pending_;
   std::vector<double> angle_, reach_;    ///< scratch of add_ring (reach_ per sector, kept 0)
   std::vector<double> low_;              ///< scratch of add_ring: per sector, its lowest wall end
   std::vector<double> vertex_distance_;  ///< scratch of add_ring: each ring vertex's distance
