@@ -6,6 +6,7 @@
 // ranges are deltas from the previous cell. Neighbours are not stored: two cells are neighbours
 // when they share an edge's two vertices, which the reader derives. About 8 bytes per cell
 // against 76 for the float64 records of 1.x (runtime/README.md, measurements).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -62,49 +63,55 @@ int orientation(const IntPoint& a, const IntPoint& b, const IntPoint& c) noexcep
 
 /// Neighbour k of cell c is the lowest-index other cell that has both vertices of c's edge k
 /// and its third vertex strictly on the other side of that edge (FORMAT.md): stacked twins and
-/// degenerate cells are not across the edge. Each vertex lists its cells in ascending order;
-/// the edge scans the shorter list of its two ends: a few entries in a real mesh, O(E^1.5)
-/// over all edges in the worst case.
+/// degenerate cells are not across the edge. Every edge of a cell with three distinct corners
+/// is listed once, at the lower of its two vertices, with its upper vertex, its cell, its
+/// number in the cell, and the side of that edge, taken from lower to upper, on which the
+/// cell's third vertex lies; lists are in ascending cell order. Two entries of a list with the
+/// same upper vertex and opposite sides are then across one edge from each other, and each
+/// entry takes the first such one: the lowest-index cell. The side is the sign of the cell's
+/// orientation, flipped where the cell runs the edge from upper to lower: the orientation of a
+/// triangle's corners is the same from each of them (exact integer determinants), so no vertex
+/// is read twice. A list holds about four entries in a real mesh: pairing them within it
+/// reads one run of memory, where scanning each cell of a vertex and reading its corners and
+/// third vertex elsewhere was a fifth of a 2.x file's load time in `perf`.
 void derive_neighbours(const std::vector<std::array<std::uint32_t, 3>>& corners,
                        const std::vector<IntPoint>& points, CellTable& out) {
-  const std::size_t vertex_count = points.size();
-  const auto distinct = [](const std::array<std::uint32_t, 3>& t, std::size_t k) {
-    return (k < 1 || t[k] != t[0]) && (k < 2 || t[k] != t[1]);
+  struct EdgeEntry {
+    std::uint32_t upper, cell;
+    std::int32_t side;  ///< of the cell's third vertex, seen along lower -> upper (0: none)
+    std::uint32_t k;    ///< the edge's number in its cell
   };
-  std::vector<std::uint32_t> start(vertex_count + 1, 0);
+  const auto distinct = [](const std::array<std::uint32_t, 3>& t) {
+    return t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+  };
+  std::vector<std::uint32_t> start(points.size() + 1, 0);
   for (const auto& t : corners) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      if (distinct(t, k)) ++start[t[k] + 1];
-    }
+    if (!distinct(t)) continue;
+    for (std::size_t k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
   }
-  for (std::size_t v = 0; v < vertex_count; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> cells(start.back());
+  for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+  std::vector<EdgeEntry> edges(start.back());
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t c = 0; c < corners.size(); ++c) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      if (distinct(corners[c], k)) cells[fill[corners[c][k]]++] = c;
+    const auto& t = corners[c];
+    if (!distinct(t)) continue;
+    const int turn = orientation(points[t[0]], points[t[1]], points[t[2]]);
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      edges[fill[std::min(a, b)]++] = {std::max(a, b), c, a < b ? turn : -turn, k};
     }
   }
+  // A cell with two equal corners has no side along any edge and no neighbours; its edges are
+  // in no list, so nothing takes it as one either.
   out.neighbours.assign(corners.size(), {kNoCell, kNoCell, kNoCell});
-  for (std::uint32_t c = 0; c < corners.size(); ++c) {
-    const auto& t = corners[c];
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[k], b = t[(k + 1) % 3], own = t[(k + 2) % 3];
-      const int side = orientation(points[a], points[b], points[own]);
-      if (a == b || side == 0) continue;
-      const std::uint32_t scan = start[a + 1] - start[a] <= start[b + 1] - start[b] ? a : b;
-      const std::uint32_t other = scan == a ? b : a;
-      for (std::uint32_t i = start[scan]; i < start[scan + 1]; ++i) {
-        const std::uint32_t d = cells[i];
-        const auto& u = corners[d];
-        if (d == c || (u[0] != other && u[1] != other && u[2] != other)) continue;
-        // The vertex of d that is neither a nor b (none when d is degenerate on this edge).
-        std::uint32_t third = kNoCell;
-        for (std::uint32_t w : u) {
-          if (w != a && w != b) third = w;
-        }
-        if (third != kNoCell && orientation(points[a], points[b], points[third]) == -side) {
-          out.neighbours[c][k] = d;
+  for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+    const EdgeEntry* const first = edges.data() + start[v];
+    const EdgeEntry* const last = edges.data() + start[v + 1];
+    for (const EdgeEntry* e = first; e != last; ++e) {
+      if (e->side == 0) continue;  // collinear corners: no side, no neighbour
+      for (const EdgeEntry* f = first; f != last; ++f) {
+        if (f->upper == e->upper && f->side == -e->side && f->cell != e->cell) {
+          out.neighbours[e->cell][e->k] = f->cell;
           break;
         }
       }
