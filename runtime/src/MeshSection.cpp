@@ -68,12 +68,12 @@ int orientation(const IntPoint& a, const IntPoint& b, const IntPoint& c) noexcep
 /// number in the cell, and the side of that edge, taken from lower to upper, on which the
 /// cell's third vertex lies; lists are in ascending cell order. Two entries of a list with the
 /// same upper vertex and opposite sides are then across one edge from each other, and each
-/// entry takes the first such one: the lowest-index cell. The side is the sign of the cell's
-/// orientation, flipped where the cell runs the edge from upper to lower: the orientation of a
-/// triangle's corners is the same from each of them (exact integer determinants), so no vertex
-/// is read twice. A list holds about four entries in a real mesh: pairing them within it
-/// reads one run of memory, where scanning each cell of a vertex and reading its corners and
-/// third vertex elsewhere was a fifth of a 2.x file's load time in `perf`.
+/// entry takes the first such one: the lowest-index cell (a cell is in a group at most once). The
+/// side is the sign of the cell's orientation, flipped where the cell runs the edge from upper to
+/// lower: the orientation of a triangle's corners is the same from each of them (exact integer
+/// determinants), so no vertex is read twice. A list holds about four entries in a real mesh:
+/// pairing them within it reads one run of memory, where scanning each cell of a vertex and reading
+/// its corners and third vertex elsewhere was a fifth of a 2.x file's load time in `perf`.
 void derive_neighbours(const std::vector<std::array<std::uint32_t, 3>>& corners,
                        const std::vector<IntPoint>& points, CellTable& out) {
   struct EdgeEntry {
@@ -102,19 +102,30 @@ void derive_neighbours(const std::vector<std::array<std::uint32_t, 3>>& corners,
     }
   }
   // A cell with two equal corners has no side along any edge and no neighbours; its edges are
-  // in no list, so nothing takes it as one either.
+  // in no list, so nothing takes it as one either. Sorted by upper vertex (then cell), each
+  // list falls into groups of the cells that share one edge; in a group, an entry's neighbour
+  // is the first entry of the opposite side. Linear in a group and O(L log L) in a list, so a
+  // hostile file of one hub vertex or of many stacked cells costs no quadratic time.
   out.neighbours.assign(corners.size(), {kNoCell, kNoCell, kNoCell});
   for (std::size_t v = 0; v + 1 < start.size(); ++v) {
-    const EdgeEntry* const first = edges.data() + start[v];
-    const EdgeEntry* const last = edges.data() + start[v + 1];
-    for (const EdgeEntry* e = first; e != last; ++e) {
-      if (e->side == 0) continue;  // collinear corners: no side, no neighbour
-      for (const EdgeEntry* f = first; f != last; ++f) {
-        if (f->upper == e->upper && f->side == -e->side && f->cell != e->cell) {
-          out.neighbours[e->cell][e->k] = f->cell;
-          break;
-        }
+    EdgeEntry* const first = edges.data() + start[v];
+    EdgeEntry* const last = edges.data() + start[v + 1];
+    std::sort(first, last, [](const EdgeEntry& x, const EdgeEntry& y) {
+      return x.upper != y.upper ? x.upper < y.upper : x.cell < y.cell;
+    });
+    for (EdgeEntry* group = first; group != last;) {
+      EdgeEntry* end = group;
+      const EdgeEntry* positive = nullptr;
+      const EdgeEntry* negative = nullptr;
+      for (; end != last && end->upper == group->upper; ++end) {
+        if (end->side > 0 && positive == nullptr) positive = end;
+        if (end->side < 0 && negative == nullptr) negative = end;
       }
+      for (const EdgeEntry* e = group; e != end; ++e) {
+        const EdgeEntry* across = e->side > 0 ? negative : e->side < 0 ? positive : nullptr;
+        if (across != nullptr) out.neighbours[e->cell][e->k] = across->cell;
+      }
+      group = end;
     }
   }
 }
