@@ -288,6 +288,7 @@ void place_on_terrain(City& city, const std::vector<bool>& relative) {
     if (r.partial && partial++ == 0) partial_id = o.source_id;
     o.ground_z += r.lo;
     for (OccluderPrism& p : o.occluders) p.ground_z += r.lo, p.top_z += r.lo;
+    for (RoofPrism& p : o.roof_prisms) p.ground_z += r.lo, p.z0 += r.lo;
     for (Surface3& s : o.surfaces)
       for (auto& ring : s.rings)
         for (auto& v : ring) v[2] += r.lo;

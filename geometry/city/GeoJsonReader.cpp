@@ -7,7 +7,8 @@
 // would overstate a lower wing).
 //
 // Thesis 7.1: an occluder must lie inside the real building. OSM's `height` is the top of the
-// roof, so a pitched roof's occluder ends at the eaves (height - roof:height), and a part that
+// roof, so a pitched roof's occluder ends at the eaves (height - roof:height), with the faces
+// of the roof above them where roof:shape names one RoofShapes.hpp models, and a part that
 // starts above the ground (min_height, building:min_level) gives no occluder at all: the 2.5D
 // occluders downstream stand on the ground, and the space below such a part is open.
 #include <algorithm>
@@ -20,6 +21,8 @@
 #include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
+#include "urbanpvs/geometry/city/RoofPrisms.hpp"
+#include "urbanpvs/geometry/city/RoofShapes.hpp"
 
 namespace urbanpvs::geometry::detail {
 namespace {
@@ -147,12 +150,14 @@ struct Feature {
   bool base_unknown = false;
   std::optional<double> height;  // from attributes; the default is applied when needed
   bool height_from_levels = false;
-  std::optional<double> levels_height;  // building:levels x level height
-  std::string roof_shape;               // lower case; "" when not given
-  std::optional<double> roof_height;    // roof:height, else roof:levels x level height
-  std::string lost;                     // why no footprint of positive area is left, or empty
-  std::string refused_height;           // a height or level count given but not positive, as given
-  std::string payload;                  // ReadOptions::payload_key's property
+  std::optional<double> levels_height;   // building:levels x level height
+  std::string roof_shape;                // lower case; "" when not given
+  std::optional<double> roof_direction;  // roof:direction, degrees clockwise from north
+  bool roof_across = false;              // roof:orientation=across
+  std::optional<double> roof_height;     // roof:height, else roof:levels x level height
+  std::string lost;                      // why no footprint of positive area is left, or empty
+  std::string refused_height;            // a height or level count given but not positive, as given
+  std::string payload;                   // ReadOptions::payload_key's property
   /// OSM's location=underground, Overture's is_underground: a car park or station below the
   /// street, mapped as a building: its footprint is no wall anyone sees.
   bool underground = false;
@@ -220,6 +225,21 @@ struct HeightReader {
     for (char& c : f.roof_shape) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (given(props, shape_key) && !props[shape_key].is_string())
       f.roof_shape = props[shape_key].dump();  // "roof:shape": 9 is no shape we know: not flat
+    for (const char* key : {"roof:direction", "roof_direction"}) {
+      if (!given(props, key) || f.roof_direction) continue;
+      const Json& v = props[key];
+      f.roof_direction = v.is_number()   ? roof_direction(v.dump())
+                         : v.is_string() ? roof_direction(v.get<std::string>())
+                                         : std::nullopt;
+      if (!f.roof_direction)
+        report.warnings.push_back(file + ": " + f.id + ": cannot read " + key + " " + v.dump() +
+                                  "; ignored");
+    }
+    for (const char* key : {"roof:orientation", "roof_orientation"}) {
+      std::string v = string_member(props, key);
+      for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (v == "across") f.roof_across = true;
+    }
     if (std::optional<double> r = length(props, "roof:height", f.id))
       f.roof_height = *r;
     else if (std::optional<double> o = length(props, "roof_height", f.id))
@@ -391,10 +411,35 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
   // A roof cut to its eaves: the walls stand up to the eaves for sure; the roof above them has
   // a shape the tags do not give, so its prism only bounds where the building may be (thesis
   // 7.1): the validator aims at it but never lets it block.
+  // Where roof:shape names a roof that shaped_roof models, its faces and the walls above the
+  // eaves are surfaces the building surely has (RoofShapes.hpp): they block, and the prisms
+  // under the faces occlude (ReadOptions::sloped_roofs).
+  // A roof of its own above the walls: cut from `height` to the eaves, or roof:levels above
+  // building:levels.
+  const bool roof_above = w.top > w.eaves;
+  const RoofShapeTags tags{f.roof_shape, f.roof_direction, f.roof_across};
   for (const Polygon& p : f.polygons) {
-    const double wall = w.cut ? std::max(w.eaves, f.min_height) : h;
+    const double wall = roof_above ? std::max(w.eaves, f.min_height) : h;
     add_prism_surfaces(p, f.min_height, wall, true, true, o.surfaces);
     if (wall < h) add_prism_surfaces(p, wall, h, false, false, o.surfaces);
+    if (!roof_above || !options.sloped_roofs || f.base_unknown) continue;
+    const std::optional<ShapedRoof> roof = shaped_roof(p, tags, wall, h);
+    if (!roof) continue;
+    ++report.roof_shapes;
+    std::vector<RoofFace> faces;
+    for (const std::vector<Vec3>& face : roof->faces) {
+      o.surfaces.push_back({{face}, true});
+      Ring plan;
+      for (const Vec3& v : face) plan.push_back({v[0], v[1]});
+      if (signed_area2(plan) < 0) std::reverse(plan.begin(), plan.end());
+      faces.push_back(roof_face({face}, {Polygon{std::move(plan), {}}}));
+    }
+    for (const std::vector<Vec3>& wall_above : roof->walls)
+      o.surfaces.push_back({{wall_above}, true});
+    // Occluders stand on the ground (thesis 7.3.2): a raised part gives none (below).
+    if (f.min_height > 0) continue;
+    for (RoofPrism& prism : roof_prisms({p}, 0.0, faces, wall))
+      o.roof_prisms.push_back(std::move(prism));
   }
   // Parts that do not reach the ground (min_height > 0, or a base we cannot read) leave open
   // space below them; the occluders downstream are 2.5D prisms standing on the ground, so such

@@ -70,7 +70,8 @@ SettingTable<ReadOptions> make_table() {
   t.push_back(flag_setting<R>("sloped-roofs", S::Read,
                               "CityJSON and CityGML: each roof face rising above its part's "
                               "occluder adds an occluder under its own plane, whose sloped edges "
-                              "cast shadows",
+                              "cast shadows; GeoJSON and OSM: so do the faces of a gabled, "
+                              "hipped, pyramidal or skillion roof:shape",
                               [](R& r) -> bool& { return r.sloped_roofs; }));
   auto payload = text_setting<R>("payload", S::Read,
                                  "Attribute (CityJSON), generic attribute (CityGML), property "

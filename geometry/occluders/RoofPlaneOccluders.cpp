@@ -32,8 +32,15 @@ Polygon where_higher(const LoweredFace& a, const LoweredFace& b, const Box2& box
   // Kept where the excess is positive; the cut interpolates along the edge.
   clip_convex(box.corners(), out, excess,
               [](Vec2 p, Vec2 q, double sp, double sq) { return p + (sp / (sp - sq)) * (q - p); });
-  if (out.size() < 3) return {};
-  return {std::move(out), {}};
+  // A corner on the line is kept and met again as the cut of the edge into it: a repeated
+  // point, which CGAL's polygon set operations crash on. The hips of a hipped roof modelled from
+  // OSM tags (RoofShapes.hpp) run exactly through such corners.
+  Ring ring;
+  for (Vec2 p : out)
+    if (ring.empty() || p != ring.back()) ring.push_back(p);
+  while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+  if (ring.size() < 3) return {};
+  return {std::move(ring), {}};
 }
 
 void shrink_block_roofs(const std::vector<const RoofPrism*>& prisms, double epsilon,
@@ -86,6 +93,10 @@ void shrink_block_roofs(const std::vector<const RoofPrism*>& prisms, double epsi
       if (&g == &f || !g.box.overlaps(box)) continue;
       const Polygon higher = where_higher(f, g, box.grown(1));
       if (higher.outer.empty()) continue;
+      if (!polygon_defect(higher).empty()) {  // a cut not to be trusted: g may lie lower anywhere
+        lower.insert(lower.end(), g.near.begin(), g.near.end());
+        continue;
+      }
       for (Polygon& cut : intersect_polygons(g.near, {higher})) lower.push_back(std::move(cut));
     }
     if (!lower.empty()) region = subtract_polygons(region, lower);

@@ -63,14 +63,15 @@ void print_summary(const City& city, const std::vector<Block>& blocks,
       r.default_heights, r.footprints_from_roof);
   // Thesis 7.1: where an occluder was kept smaller than the building, or none was made.
   std::printf(
-      "cut:         %zu GeoJSON occluders cut to the eaves (roof:shape), %zu raised parts without "
-      "occluder,\n"
+      "cut:         %zu GeoJSON occluders cut to the eaves (roof:shape), %zu GeoJSON roofs as "
+      "faces (roof:shape),\n"
+      "             %zu raised parts without occluder,\n"
       "             %zu footprints from walls under an overhanging roof, %zu parts without "
       "footprint\n"
       "terrain:     %zu GeoJSON objects set on the terrain; %zu installations merged into "
       "buildings\n",
-      r.roof_eaves, r.raised_parts, r.footprints_from_walls, r.footprints_unknown, r.on_terrain,
-      r.installations);
+      r.roof_eaves, r.roof_shapes, r.raised_parts, r.footprints_from_walls, r.footprints_unknown,
+      r.on_terrain, r.installations);
   if (!r.terrain_note.empty()) std::printf("DEM:         %s\n", r.terrain_note.c_str());
   if (r.osm_multipolygons > 0)
     std::printf("OSM:         %zu buildings from multipolygons\n", r.osm_multipolygons);

@@ -202,6 +202,17 @@ void expect_on_terrain(const City& c) {
     const auto [slo, shi] = surface_z_range(o);
     EXPECT_NEAR(slo, e.lo, 1e-9) << e.id;
     EXPECT_NEAR(shi, e.lo + e.height, 1e-9) << e.id;
+    // The gabled roof's prisms (RoofShapes.hpp) stand where its occluder stands, under the
+    // ridge (lowest ground + height) and above the eaves somewhere.
+    const bool gabled = std::string(e.id) == "on-slope";
+    EXPECT_EQ(o.roof_prisms.empty(), !gabled) << e.id;
+    for (const RoofPrism& p : o.roof_prisms) {
+      EXPECT_NEAR(p.ground_z, e.lo, 1e-9) << e.id;
+      double top = -INFINITY;
+      for (Vec2 v : p.footprint.outer) top = std::max(top, p.top_at(v));
+      EXPECT_LE(top, e.lo + e.height + 1e-9) << e.id;
+      EXPECT_GT(top, e.lo + e.eaves + 1) << e.id;
+    }
   }
   // A part from 3 m: still no occluder, its box from the lowest ground + 3 to the highest + 10.
   const CityObject& raised = object(c, "raised-part");

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <random>
@@ -17,6 +18,7 @@
 
 #include "urbanpvs/geometry/ParallelFor.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
+#include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
 #include "urbanpvs/geometry/city/RoofPrisms.hpp"
 #include "urbanpvs/geometry/occluders/Blocks.hpp"
 #include "urbanpvs/geometry/occluders/RoofPlaneOccluders.hpp"
@@ -220,6 +222,84 @@ TEST(RoofPlaneOccluders, NeverAboveTheErodedRoofOnRandomRoofsAndRows) {
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(with_occluders, 30u);
+}
+
+// The roof-face occluders of a GeoJSON city in projected metres (OSM roof:shape tags), with
+// the city, and a local point back in the input's coordinates.
+struct TaggedRoofs {
+  City city;
+  std::vector<Occluder> occluders;
+
+  explicit TaggedRoofs(const std::string& text) {
+    ReadOptions options;
+    options.coordinates = ReadOptions::Coordinates::Projected;
+    city = read_city_text(text, "roofs.geojson", options);
+    occluders = roof_plane_occluders(city.objects, build_blocks(city.objects, {}), kEpsilon, {});
+  }
+  Vec2 input(Vec2 q) const {
+    const auto in = LocalFrameMapping(city.frame).to_input(q.x, q.y, 0);
+    return {in[0], in[1]};
+  }
+};
+
+// Terraced houses with the same tags (OSM roof:shape, RoofShapes.hpp): the faces of neighbours
+// lie in one plane along the row (their planes differ only by rounding), and the hipped row's
+// hips meet at the party walls. The occluders never rise above the eroded roofs.
+TEST(RoofPlaneOccluders, TerracedRoofsInOnePlane) {
+  std::string text = R"({"type":"FeatureCollection","features":[)";
+  const char* shapes[] = {"gabled", "hipped", "gabled"};
+  for (int row = 0; row < 3; ++row)
+    for (int k = 0; k < 8; ++k) {
+      const double x0 = 100003.7 + 12.0 * k, y0 = 400001.3 + 20.0 * row;
+      char f[512];
+      std::snprintf(
+          f, sizeof f,
+          R"(%s{"type":"Feature","id":"r%dh%d","properties":{"height":13,)"
+          R"("roof:shape":"%s","roof:height":4},"geometry":{"type":"Polygon",)"
+          R"("coordinates":[[[%.3f,%.3f],[%.3f,%.3f],[%.3f,%.3f],[%.3f,%.3f],[%.3f,%.3f]]]}})",
+          row + k == 0 ? "" : ",", row, k, shapes[row], x0, y0, x0 + 12, y0, x0 + 12, y0 + 8, x0,
+          y0 + 8, x0, y0);
+      text += f;
+    }
+  text += "]}";
+  const TaggedRoofs roofs(text);
+  ASSERT_FALSE(roofs.occluders.empty());
+  // Each house's roof as a function: eaves 9, top 13, 12 × 8 with the ridge along x over the
+  // middle; hipped ends fall at the same slope (1 m over 1 m).
+  auto roof_over = [&](Vec2 q) -> std::optional<double> {
+    const Vec2 in = roofs.input(q);
+    const double x = in.x - 100003.7, y = in.y - 400001.3;
+    const int row = static_cast<int>(std::floor(y / 20)), k = static_cast<int>(std::floor(x / 12));
+    const double u = x - 12 * k, v = y - 20 * row;
+    if (row < 0 || row > 2 || k < 0 || k > 7 || v > 8) return std::nullopt;
+    double d = std::min(v, 8 - v);  // to the eaves
+    if (row == 1) d = std::min({d, u, 12 - u});
+    return 9 + d;
+  };
+  std::mt19937_64 rng(5);
+  check_never_above_the_eroded_roof(roofs.occluders, roof_over, rng, 60);
+}
+
+// A hipped roof as RoofShapes.hpp models it from OSM tags: its hips run at exactly 45° from
+// the corners, so the line where a hip face and a side face are equal passes exactly through a
+// corner of the box that where_higher clips, which the clip then gave twice. CGAL's polygon set
+// operations crashed on that repeated point (this house, from benchmarks/roof_shapes.sh).
+TEST(RoofPlaneOccluders, HipsThroughTheCornersOfTheClip) {
+  const std::string text =
+      R"({"type":"FeatureCollection","features":[{"type":"Feature","id":"h383","properties":)"
+      R"({"height":15.17,"roof:shape":"hipped","roof:height":3.17},"geometry":{"type":"Polygon",)"
+      R"("coordinates":[[[100380.0,400228.0],[100388.492,400228.0],[100388.492,400257.991],)"
+      R"([100380.0,400257.991],[100380.0,400228.0]]]}}]})";
+  const TaggedRoofs roofs(text);
+  ASSERT_FALSE(roofs.occluders.empty());
+  auto roof_over = [&](Vec2 q) -> std::optional<double> {
+    const Vec2 in = roofs.input(q);
+    const double u = in.x - 100380.0, v = in.y - 400228.0;
+    if (u < 0 || u > 8.492 || v < 0 || v > 29.991) return std::nullopt;
+    return 12 + 3.17 / (8.492 / 2) * std::min({u, 8.492 - u, v, 29.991 - v});
+  };
+  std::mt19937_64 rng(9);
+  check_never_above_the_eroded_roof(roofs.occluders, roof_over, rng, 200);
 }
 
 // Blocks are shrunk on several threads (roof_plane_occluders' `threads`): the occluders are the

@@ -84,11 +84,12 @@ struct CityObject {
   Box3 bbox;                             ///< of all its geometry, parts above the ground included
   std::vector<OccluderPrism> occluders;  ///< may be empty (e.g. only raised parts)
   /// With ReadOptions::sloped_roofs: the prisms under the roof faces that rise above the parts'
-  /// occluders (CityJSON only).
+  /// occluders (CityJSON and CityGML faces; GeoJSON and OSM roof:shape, RoofShapes.hpp).
   std::vector<RoofPrism> roof_prisms;
   /// The input's own surfaces of this object: CityJSON, every surface of the chosen LoD of the
   /// building, its parts and installations; GeoJSON, the walls, top and bottom of each part's
-  /// prism from its base to its full height (the roof's top).
+  /// prism from its base to its full height (the roof's top), and where roof:shape gives the
+  /// roof, its faces and the walls above the eaves (RoofShapes.hpp).
   std::vector<Surface3> surfaces;
   /// False when the object cannot be an occluder (geometry beyond repair, no height): it has no
   /// occluders and its surfaces block nothing in validation, but it is still listed, tested
@@ -122,6 +123,8 @@ struct ReadReport {
   std::size_t raised_parts = 0;
   /// GeoJSON buildings and parts whose occluder was cut from `height` down to the eaves.
   std::size_t roof_eaves = 0;
+  /// Of those, the parts whose roof:shape gave the roof's faces (RoofShapes.hpp).
+  std::size_t roof_shapes = 0;
   /// GeoJSON objects set on the terrain (TINRelief) of a CityJSON file read with them.
   std::size_t on_terrain = 0;
   /// OpenStreetMap buildings and parts assembled from multipolygon relations.

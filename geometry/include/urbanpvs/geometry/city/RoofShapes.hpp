@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The roof that OpenStreetMap's roof:shape describes over a footprint, as planar 3D faces: what
+// the GeoJSON and OSM readers give a pitched roof above its eaves instead of an empty space the
+// roof may or may not fill. Its faces become the validator's blocking surfaces, and the prisms
+// under them (RoofPrisms.hpp) occluders whose sloped edges cast shadows (thesis 4.2.1, 7.3.2).
+//
+// Thesis 7.1: an occluder must lie inside the building. Every model here rises from the eaves
+// E to the top T as z(p) = E + (T - E)·g(p) with g in [0, 1], and lies nowhere above the roof
+// the tag names:
+//   gabled  (also for round and gambrel roofs, whose profiles bulge above its straight slopes),
+//   hipped  (also for half-hipped and mansard roofs, likewise above it),
+//   pyramidal (convex footprints), skillion (with roof:direction).
+// Other shapes (dome, onion, cone, saltbox, ...) and footprints that do not suit the model get
+// none: the reader then keeps the roof as a space it may fill, as before. The same holds with
+// unknown eaves (E = the part's base): the real walls reach at least E, so the real roof lies
+// above the model with the lowest eaves.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "urbanpvs/geometry/city/Polygon2.hpp"
+
+namespace urbanpvs::geometry {
+
+/// The tags that shape a roof.
+struct RoofShapeTags {
+  std::string shape;  ///< roof:shape, lower case
+  /// roof:direction: the way the roof faces (downhill), degrees clockwise from north.
+  std::optional<double> direction;
+  bool across = false;  ///< roof:orientation=across: the ridge runs across the longer sides
+};
+
+/// A modelled roof: open rings in the footprint's frame, heights absolute like its eaves and top.
+struct ShapedRoof {
+  std::vector<std::vector<Vec3>> faces;  ///< planar faces from the eaves up: triangles, quads
+  std::vector<std::vector<Vec3>> walls;  ///< vertical walls above the eaves (gables, high sides)
+};
+
+/// The roof over `footprint` (a cleaned polygon: counter-clockwise outer ring) with walls up to
+/// `eaves` and its top at `top`, or nothing when the shape is none of those modelled or the
+/// footprint does not suit it: gabled and hipped roofs need a quadrilateral with right angles
+/// (within 10°, vertices less than 10 cm off its sides dropped), pyramidal roofs a convex
+/// footprint, skillions a roof:direction; none has holes.
+std::optional<ShapedRoof> shaped_roof(const Polygon& footprint, const RoofShapeTags& tags,
+                                      double eaves, double top);
+
+/// roof:direction as degrees clockwise from north: a number, or a compass point (N, NNE, ... NNW,
+/// any case). Nothing when it is neither.
+std::optional<double> roof_direction(std::string_view text);
+
+}  // namespace urbanpvs::geometry
