@@ -9,9 +9,12 @@
 namespace urbanpvs::geometry {
 namespace {
 
-// A vertex this close to the chord of its neighbours is dropped from a quadrilateral (m):
+// A vertex this close outside the chord of its neighbours is dropped from a quadrilateral (m):
 // mapped rectangles carry such points where a neighbour's wall meets them.
 constexpr double kOnSide = 0.1;
+// A vertex this close inside the chord of its neighbours is dropped too (m): OSM stores
+// coordinates to 1e-7 degrees, about 1 cm, so a straight wall's points wander by as much.
+constexpr double kOnChord = 0.02;
 // A quadrilateral's corners must be right angles within this (cosine of 80°).
 constexpr double kRightAngle = 0.1737;
 // Heights within this (m) of the eaves count as the eaves: no wall above them.
@@ -22,13 +25,17 @@ double distance_to_line(Vec2 p, Vec2 a, Vec2 b) {
   return len > 0 ? std::abs(cross(b - a, p - a)) / len : glm::length(p - a);
 }
 
-// The ring without the vertices that lie within kOnSide of the chord of their neighbours.
+// The ring (counter-clockwise) without the vertices that lie within kOnSide outside the chord
+// of their neighbours, or within kOnChord inside it: the ring left lies within the footprint up
+// to the rounding of its coordinates, so a roof over it overhangs no wall.
 Ring corners_of(Ring r) {
   for (bool dropped = true; dropped && r.size() > 3;) {
     dropped = false;
     for (std::size_t i = 0; i < r.size() && r.size() > 3; ++i) {
       const Vec2 prev = r[(i + r.size() - 1) % r.size()], next = r[(i + 1) % r.size()];
-      if (distance_to_line(r[i], prev, next) < kOnSide &&
+      const double off = distance_to_line(r[i], prev, next);
+      const bool outside = cross(next - prev, r[i] - prev) < 0;
+      if (off < (outside ? kOnSide : kOnChord) &&
           dot(r[i] - prev, next - r[i]) > 0) {  // between them, not a spike
         r.erase(r.begin() + static_cast<std::ptrdiff_t>(i));
         dropped = true;

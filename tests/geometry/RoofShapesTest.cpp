@@ -129,9 +129,12 @@ TEST(RoofShapes, ShapesAndFootprintsNotModelledGiveNone) {
   // A parallelogram (60° corners) is no rectangle.
   const Polygon skew{{{0, 0}, {20, 0}, {25, 8.66}, {5, 8.66}}, {}};
   EXPECT_FALSE(shaped_roof(skew, {"gabled", {}, false}, 6, 9));
-  // A point 5 cm off a side is dropped: still a rectangle.
-  const Polygon noisy{{{0, 0}, {15, 0.05}, {30, 0}, {30, 20}, {0, 20}}, {}};
-  EXPECT_TRUE(shaped_roof(noisy, {"gabled", {}, false}, 6, 9));
+  // A point 5 cm outside a side is dropped: still a rectangle, within the footprint. One 5 cm
+  // inside is kept: the rectangle over it would overhang the wall there.
+  const Polygon bulge{{{0, 0}, {15, -0.05}, {30, 0}, {30, 20}, {0, 20}}, {}};
+  EXPECT_TRUE(shaped_roof(bulge, {"gabled", {}, false}, 6, 9));
+  const Polygon dent{{{0, 0}, {15, 0.05}, {30, 0}, {30, 20}, {0, 20}}, {}};
+  EXPECT_FALSE(shaped_roof(dent, {"gabled", {}, false}, 6, 9));
 }
 
 // Random rotated rectangles and convex footprints: the faces cover every point of the

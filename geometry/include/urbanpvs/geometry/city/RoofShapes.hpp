@@ -42,8 +42,9 @@ struct ShapedRoof {
 /// The roof over `footprint` (a cleaned polygon: counter-clockwise outer ring) with walls up to
 /// `eaves` and its top at `top`, or nothing when the shape is none of those modelled or the
 /// footprint does not suit it: gabled and hipped roofs need a quadrilateral with right angles
-/// (within 10°, vertices less than 10 cm off its sides dropped), pyramidal roofs a convex
-/// footprint, skillions a roof:direction; none has holes.
+/// (within 10°, vertices less than 10 cm outside its sides or 2 cm inside them dropped, so that
+/// it lies within the footprint up to the rounding of OSM's coordinates), pyramidal roofs a
+/// convex footprint, skillions a roof:direction; none has holes.
 std::optional<ShapedRoof> shaped_roof(const Polygon& footprint, const RoofShapeTags& tags,
                                       double eaves, double top);
 
