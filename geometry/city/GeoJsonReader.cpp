@@ -153,11 +153,14 @@ struct Feature {
   std::optional<double> levels_height;   // building:levels x level height
   std::string roof_shape;                // lower case; "" when not given
   std::optional<double> roof_direction;  // roof:direction, degrees clockwise from north
-  bool roof_across = false;              // roof:orientation=across
-  std::optional<double> roof_height;     // roof:height, else roof:levels x level height
-  std::string lost;                      // why no footprint of positive area is left, or empty
-  std::string refused_height;            // a height or level count given but not positive, as given
-  std::string payload;                   // ReadOptions::payload_key's property
+  RidgeOrientation roof_ridge = RidgeOrientation::Unknown;  // roof:orientation
+  bool roof_height_in_metres = false;  // roof:height given, not guessed from roof:levels
+  /// building=roof, building:part=roof: a roof on open sides (a canopy, a shelter).
+  bool open_sides = false;
+  std::optional<double> roof_height;  // roof:height, else roof:levels x level height
+  std::string lost;                   // why no footprint of positive area is left, or empty
+  std::string refused_height;         // a height or level count given but not positive, as given
+  std::string payload;                // ReadOptions::payload_key's property
   /// OSM's location=underground, Overture's is_underground: a car park or station below the
   /// street, mapped as a building: its footprint is no wall anyone sees.
   bool underground = false;
@@ -238,12 +241,15 @@ struct HeightReader {
     for (const char* key : {"roof:orientation", "roof_orientation"}) {
       std::string v = string_member(props, key);
       for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      if (v == "across") f.roof_across = true;
+      if (v == "along") f.roof_ridge = RidgeOrientation::Along;
+      if (v == "across") f.roof_ridge = RidgeOrientation::Across;
     }
+    for (const char* key : {"building", "building:part"})
+      if (string_member(props, key) == "roof") f.open_sides = true;
     if (std::optional<double> r = length(props, "roof:height", f.id))
-      f.roof_height = *r;
+      f.roof_height = *r, f.roof_height_in_metres = true;
     else if (std::optional<double> o = length(props, "roof_height", f.id))
-      f.roof_height = *o;
+      f.roof_height = *o, f.roof_height_in_metres = true;
     else if (std::optional<double> l = length(props, "roof:levels", f.id))
       f.roof_height = *l * options.level_height;
     if (f.roof_height && *f.roof_height < 0) f.roof_height.reset();
@@ -408,6 +414,15 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
                                      : " (" + f.refused_height + " is no height: not positive)") +
            " (and no --default-height)";
   if (!f.lost.empty()) return file + ": " + f.id + ": " + f.lost;
+  // A roof on open sides (building=roof: a canopy, a petrol station's roof, a shelter): no wall
+  // stands under it, so it gives no occluder (thesis 7.1), and in validation its prism is a
+  // target only: sight lines pass under it.
+  if (f.open_sides) {
+    for (const Polygon& p : f.polygons)
+      add_prism_surfaces(p, f.min_height, h, false, true, o.surfaces);
+    ++report.open_roofs;
+    return {};
+  }
   // A roof cut to its eaves: the walls stand up to the eaves for sure; the roof above them has
   // a shape the tags do not give, so its prism only bounds where the building may be (thesis
   // 7.1): the validator aims at it but never lets it block.
@@ -417,12 +432,16 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
   // A roof of its own above the walls: cut from `height` to the eaves, or roof:levels above
   // building:levels.
   const bool roof_above = w.top > w.eaves;
-  const RoofShapeTags tags{f.roof_shape, f.roof_direction, f.roof_across};
+  // The shape is modelled only between eaves and top that the tags give in metres: `height`,
+  // and roof:height below it (RoofShapes.hpp).
+  const bool measured = f.height && !f.height_from_levels && f.roof_height_in_metres && w.cut &&
+                        w.eaves > f.min_height;
+  const RoofShapeTags tags{f.roof_shape, f.roof_direction, f.roof_ridge};
   for (const Polygon& p : f.polygons) {
     const double wall = roof_above ? std::max(w.eaves, f.min_height) : h;
     add_prism_surfaces(p, f.min_height, wall, true, true, o.surfaces);
     if (wall < h) add_prism_surfaces(p, wall, h, false, false, o.surfaces);
-    if (!roof_above || !options.sloped_roofs || f.base_unknown) continue;
+    if (!measured || !options.sloped_roofs || f.base_unknown) continue;
     const std::optional<ShapedRoof> roof = shaped_roof(p, tags, wall, h);
     if (!roof) continue;
     ++report.roof_shapes;

@@ -53,8 +53,24 @@ bool convex(const Ring& r) {
   return true;
 }
 
+// Whether every vertex of `r` lies outside the convex quadrilateral `q` or within kOnChord of
+// its boundary: a roof over `q` then overhangs no wall beyond the coordinates' rounding, however
+// the dropped vertices' small offsets added up.
+bool within_footprint(const std::array<Vec2, 4>& q, const Ring& r) {
+  for (Vec2 v : r) {
+    double inside = INFINITY;  // distance to the nearest side, when inside every side
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Vec2 a = q[i], b = q[(i + 1) % 4];
+      const double d = cross(b - a, v - a) / glm::length(b - a);
+      inside = std::min(inside, d);
+    }
+    if (inside > kOnChord) return false;
+  }
+  return true;
+}
+
 // The corners of a footprint that is a rectangle up to kOnSide and kRightAngle, counter-
-// clockwise, the first edge one of the two longer sides (or of the shorter ones: `across`).
+// clockwise, the first edge one of the two longer sides (of the shorter ones: `across`).
 std::optional<std::array<Vec2, 4>> rectangle(const Polygon& p, bool across) {
   if (!p.holes.empty()) return std::nullopt;
   const Ring r = corners_of(p.outer);
@@ -66,7 +82,9 @@ std::optional<std::array<Vec2, 4>> rectangle(const Polygon& p, bool across) {
   const double first = glm::length(r[1] - r[0]) + glm::length(r[3] - r[2]);
   const double second = glm::length(r[2] - r[1]) + glm::length(r[0] - r[3]);
   const std::size_t s = (first >= second) != across ? 0 : 1;
-  return std::array<Vec2, 4>{r[s], r[s + 1], r[(s + 2) % 4], r[(s + 3) % 4]};
+  const std::array<Vec2, 4> q{r[s], r[s + 1], r[(s + 2) % 4], r[(s + 3) % 4]};
+  if (!within_footprint(q, p.outer)) return std::nullopt;
+  return q;
 }
 
 Vec3 at(Vec2 p, double z) {
@@ -86,38 +104,9 @@ ShapedRoof gabled(const std::array<Vec2, 4>& q, double eaves, double top) {
   return roof;
 }
 
-// Hipped: the ridge on the centre line along ab, half the width short of each end, so that
-// every face rises at one slope; a ridge of no length is the pyramid's apex.
-ShapedRoof hipped(const std::array<Vec2, 4>& q, double eaves, double top) {
-  const auto [a, b, c, d] = q;
-  const Vec2 m1 = 0.5 * (d + a), m2 = 0.5 * (b + c);
-  const double length = glm::length(m2 - m1);
-  const double width = 0.5 * (glm::length(c - b) + glm::length(a - d));
-  Vec2 r1 = 0.5 * (m1 + m2), r2 = r1;
-  if (length > width) {
-    const Vec2 u = (m2 - m1) / length;
-    r1 = m1 + 0.5 * width * u;
-    r2 = m2 - 0.5 * width * u;
-  }
-  ShapedRoof roof;
-  roof.faces = {{at(b, eaves), at(c, eaves), at(r2, top)},
-                {at(d, eaves), at(a, eaves), at(r1, top)}};
-  if (r1 == r2) {
-    roof.faces.push_back({at(a, eaves), at(b, eaves), at(r1, top)});
-    roof.faces.push_back({at(c, eaves), at(d, eaves), at(r1, top)});
-  } else {
-    roof.faces.push_back({at(a, eaves), at(b, eaves), at(r2, top), at(r1, top)});
-    roof.faces.push_back({at(c, eaves), at(d, eaves), at(r1, top), at(r2, top)});
-  }
-  return roof;
-}
-
-// Pyramidal: a triangle from each side up to the apex over the footprint's centroid. The
-// footprint is convex up to its points near the chords of their neighbours; each side must
-// face the apex, so the triangles tile it.
-std::optional<ShapedRoof> pyramidal(const Polygon& p, double eaves, double top) {
-  const Ring& r = p.outer;
-  if (!p.holes.empty() || !convex(corners_of(r))) return std::nullopt;
+// A pyramid: a triangle from each side of the convex ring up to the apex over its centroid, at
+// the top. Each side must face the apex, so the triangles tile the ring.
+std::optional<ShapedRoof> pyramid(const Ring& r, double eaves, double top) {
   Vec2 centroid{0, 0};
   double area2 = 0;
   for (std::size_t i = 0; i < r.size(); ++i) {
@@ -166,12 +155,19 @@ std::optional<ShapedRoof> shaped_roof(const Polygon& footprint, const RoofShapeT
                                       double eaves, double top) {
   if (!(top > eaves) || footprint.outer.size() < 3) return std::nullopt;
   const std::string& s = tags.shape;
-  if (s == "gabled" || s == "round" || s == "gambrel") {
-    if (auto q = rectangle(footprint, tags.across)) return gabled(*q, eaves, top);
-  } else if (s == "hipped" || s == "half-hipped" || s == "mansard") {
-    if (auto q = rectangle(footprint, false)) return hipped(*q, eaves, top);
+  const bool gabled_family = s == "gabled" || s == "round" || s == "gambrel";
+  const bool hipped_family = s == "hipped" || s == "half-hipped" || s == "mansard";
+  if (gabled_family && tags.ridge != RidgeOrientation::Unknown) {
+    if (auto q = rectangle(footprint, tags.ridge == RidgeOrientation::Across))
+      return gabled(*q, eaves, top);
+  } else if (gabled_family || hipped_family) {
+    // The ridge's direction (untagged) or length (a hip's slope is not tagged): the pyramid over
+    // the rectangle is the lower envelope of every such roof.
+    if (auto q = rectangle(footprint, false))
+      return pyramid(Ring(q->begin(), q->end()), eaves, top);
   } else if (s == "pyramidal") {
-    return pyramidal(footprint, eaves, top);
+    if (footprint.holes.empty() && convex(corners_of(footprint.outer)))
+      return pyramid(footprint.outer, eaves, top);
   } else if (s == "skillion" && tags.direction && footprint.holes.empty()) {
     return skillion(footprint.outer, *tags.direction, eaves, top);
   }

@@ -62,7 +62,7 @@ Ring rotated_rectangle(double length, double width, double angle, Vec2 at) {
 
 TEST(RoofShapes, GabledRidgeAlongTheLongerSidesOrAcross) {
   const Polygon house{{{0, 0}, {30, 0}, {30, 20}, {0, 20}}, {}};
-  const auto along = shaped_roof(house, {"gabled", {}, false}, 8, 12);
+  const auto along = shaped_roof(house, {"gabled", {}, RidgeOrientation::Along}, 8, 12);
   ASSERT_TRUE(along);
   EXPECT_EQ(along->faces.size(), 2u);
   EXPECT_EQ(along->walls.size(), 2u);  // the gables at x = 0 and x = 30
@@ -72,41 +72,55 @@ TEST(RoofShapes, GabledRidgeAlongTheLongerSidesOrAcross) {
   EXPECT_NEAR(*roof_z(along->faces, {15, 15}), 10, 1e-9);
   for (const auto& wall : along->walls)
     for (const Vec3& v : wall) EXPECT_TRUE(v.x == 0 || v.x == 30);
-  const auto across = shaped_roof(house, {"gabled", {}, true}, 8, 12);
+  const auto across = shaped_roof(house, {"gabled", {}, RidgeOrientation::Across}, 8, 12);
   ASSERT_TRUE(across);
   EXPECT_NEAR(*roof_z(across->faces, {15, 0}), 12, 1e-9);
   EXPECT_NEAR(*roof_z(across->faces, {0, 10}), 8, 1e-9);
   EXPECT_NEAR(*roof_z(across->faces, {22.5, 10}), 10, 1e-9);
 }
 
-TEST(RoofShapes, HippedAndPyramidalRiseAtOneSlopeFromEveryEaves) {
+// Without roof:orientation the ridge may run either way, and a hipped roof's ridge may have any
+// length: the model is the pyramid over the rectangle, the lower envelope of all of them.
+TEST(RoofShapes, UntaggedRidgesAndHipsGiveTheLowerEnvelope) {
   const Polygon house{{{0, 0}, {30, 0}, {30, 20}, {0, 20}}, {}};
-  const auto hipped = shaped_roof(house, {"hipped", {}, false}, 8, 12);
-  ASSERT_TRUE(hipped);
-  EXPECT_EQ(hipped->faces.size(), 4u);
-  EXPECT_TRUE(hipped->walls.empty());
-  // Ridge from (10, 10) to (20, 10); 4 m over 10 m on every side.
-  EXPECT_NEAR(*roof_z(hipped->faces, {15, 10}), 12, 1e-9);
-  EXPECT_NEAR(*roof_z(hipped->faces, {10, 10}), 12, 1e-9);
-  EXPECT_NEAR(*roof_z(hipped->faces, {5, 10}), 10, 1e-9);
-  EXPECT_NEAR(*roof_z(hipped->faces, {15, 5}), 10, 1e-9);
+  const auto along = shaped_roof(house, {"gabled", {}, RidgeOrientation::Along}, 8, 12);
+  const auto across = shaped_roof(house, {"gabled", {}, RidgeOrientation::Across}, 8, 12);
+  ASSERT_TRUE(along && across);
+  for (const char* s : {"gabled", "round", "gambrel", "hipped", "half-hipped", "mansard"}) {
+    SCOPED_TRACE(s);
+    const auto roof = shaped_roof(house, {s, {}, RidgeOrientation::Unknown}, 8, 12);
+    ASSERT_TRUE(roof);
+    EXPECT_EQ(roof->faces.size(), 4u);
+    EXPECT_TRUE(roof->walls.empty());
+    EXPECT_NEAR(*roof_z(roof->faces, {15, 10}), 12, 1e-9);  // the apex
+    // Hipped roofs with the ridge along x, from none (the pyramid) to the whole length (the
+    // gable): the model is at most the lowest of them.
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int k = 0; k < 500; ++k) {
+      const Vec2 p{30 * u(rng), 20 * u(rng)};
+      const double z = *roof_z(roof->faces, p);
+      EXPECT_NEAR(z, std::min(*roof_z(along->faces, p), *roof_z(across->faces, p)), 1e-9);
+      for (double ridge : {0.0, 5.0, 10.0, 20.0, 30.0}) {
+        const double end = (30 - ridge) / 2;  // a hip's run
+        const double side = 4 * std::min(p.y, 20 - p.y) / 10;
+        const double hip = end > 0 ? 4 * std::min(p.x, 30 - p.x) / end : INFINITY;
+        EXPECT_LE(z, 8 + std::min({side, hip, 4.0}) + 1e-9) << ridge;
+      }
+    }
+  }
   const Polygon square{{{0, 0}, {20, 0}, {20, 20}, {0, 20}}, {}};
-  const auto pyramid = shaped_roof(square, {"pyramidal", {}, false}, 8, 12);
+  const auto pyramid = shaped_roof(square, {"pyramidal", {}, RidgeOrientation::Unknown}, 8, 12);
   ASSERT_TRUE(pyramid);
   EXPECT_EQ(pyramid->faces.size(), 4u);
   EXPECT_NEAR(*roof_z(pyramid->faces, {10, 10}), 12, 1e-9);
   EXPECT_NEAR(*roof_z(pyramid->faces, {10, 5}), 10, 1e-9);
-  // A square hipped roof is that pyramid.
-  const auto hipped_square = shaped_roof(square, {"hipped", {}, false}, 8, 12);
-  ASSERT_TRUE(hipped_square);
-  EXPECT_NEAR(*roof_z(hipped_square->faces, {10, 10}), 12, 1e-9);
-  EXPECT_NEAR(*roof_z(hipped_square->faces, {5, 10}), 10, 1e-9);
 }
 
 TEST(RoofShapes, SkillionFacesItsDirection) {
   const Polygon shed{{{0, 0}, {10, 0}, {10, 4}, {0, 4}}, {}};
   // Facing south (180°): high on the north side (y = 4), at the eaves on the south (y = 0).
-  const auto south = shaped_roof(shed, {"skillion", 180.0, false}, 3, 5);
+  const auto south = shaped_roof(shed, {"skillion", 180.0, RidgeOrientation::Unknown}, 3, 5);
   ASSERT_TRUE(south);
   ASSERT_EQ(south->faces.size(), 1u);
   EXPECT_NEAR(*roof_z(south->faces, {5, 4}), 5, 1e-9);
@@ -115,26 +129,31 @@ TEST(RoofShapes, SkillionFacesItsDirection) {
   // Walls above the eaves: the north side (a quad) and the two ends (triangles); none south.
   EXPECT_EQ(south->walls.size(), 3u);
   // No direction: which side is high is unknown.
-  EXPECT_FALSE(shaped_roof(shed, {"skillion", std::nullopt, false}, 3, 5));
+  EXPECT_FALSE(shaped_roof(shed, {"skillion", std::nullopt, RidgeOrientation::Unknown}, 3, 5));
 }
 
 TEST(RoofShapes, ShapesAndFootprintsNotModelledGiveNone) {
   const Polygon l_shape{{{0, 0}, {20, 0}, {20, 8}, {8, 8}, {8, 20}, {0, 20}}, {}};
   for (const char* s : {"gabled", "hipped", "pyramidal"})
-    EXPECT_FALSE(shaped_roof(l_shape, {s, {}, false}, 6, 9)) << s;
+    EXPECT_FALSE(shaped_roof(l_shape, {s, {}, RidgeOrientation::Along}, 6, 9)) << s;
   const Polygon house{{{0, 0}, {30, 0}, {30, 20}, {0, 20}}, {}};
   for (const char* s : {"dome", "onion", "saltbox", "flat", "9.0", ""})
-    EXPECT_FALSE(shaped_roof(house, {s, {}, false}, 6, 9)) << s;
-  EXPECT_FALSE(shaped_roof(house, {"gabled", {}, false}, 9, 9));  // no height above the eaves
+    EXPECT_FALSE(shaped_roof(house, {s, {}, RidgeOrientation::Along}, 6, 9)) << s;
+  EXPECT_FALSE(shaped_roof(house, {"gabled", {}, RidgeOrientation::Along}, 9,
+                           9));  // no height above the eaves
   // A parallelogram (60° corners) is no rectangle.
   const Polygon skew{{{0, 0}, {20, 0}, {25, 8.66}, {5, 8.66}}, {}};
-  EXPECT_FALSE(shaped_roof(skew, {"gabled", {}, false}, 6, 9));
+  EXPECT_FALSE(shaped_roof(skew, {"gabled", {}, RidgeOrientation::Along}, 6, 9));
   // A point 5 cm outside a side is dropped: still a rectangle, within the footprint. One 5 cm
   // inside is kept: the rectangle over it would overhang the wall there.
   const Polygon bulge{{{0, 0}, {15, -0.05}, {30, 0}, {30, 20}, {0, 20}}, {}};
-  EXPECT_TRUE(shaped_roof(bulge, {"gabled", {}, false}, 6, 9));
+  EXPECT_TRUE(shaped_roof(bulge, {"gabled", {}, RidgeOrientation::Along}, 6, 9));
   const Polygon dent{{{0, 0}, {15, 0.05}, {30, 0}, {30, 20}, {0, 20}}, {}};
-  EXPECT_FALSE(shaped_roof(dent, {"gabled", {}, false}, 6, 9));
+  EXPECT_FALSE(shaped_roof(dent, {"gabled", {}, RidgeOrientation::Along}, 6, 9));
+  // Small dents that each pass, but add up to more than 2 cm inside the rectangle.
+  const Polygon dents{{{0, 0}, {5, 0.018}, {10, 0.028}, {15, 0.018}, {20, 0}, {20, 10}, {0, 10}},
+                      {}};
+  EXPECT_FALSE(shaped_roof(dents, {"gabled", {}, RidgeOrientation::Along}, 6, 9));
 }
 
 // Random rotated rectangles and convex footprints: the faces cover every point of the
@@ -146,9 +165,10 @@ TEST(RoofShapes, FacesTileTheFootprintBetweenEavesAndTop) {
     const double l = len(rng), w = len(rng), eaves = 3 + len(rng) / 4, top = eaves + len(rng) / 8;
     const Ring r = rotated_rectangle(l, w, ang(rng), {pos(rng), pos(rng)});
     for (const char* s : {"gabled", "hipped", "pyramidal"}) {
-      for (bool across : {false, true}) {
+      for (RidgeOrientation ridge :
+           {RidgeOrientation::Unknown, RidgeOrientation::Along, RidgeOrientation::Across}) {
         SCOPED_TRACE(std::string(s) + " trial " + std::to_string(trial));
-        const auto roof = shaped_roof({r, {}}, {s, {}, across}, eaves, top);
+        const auto roof = shaped_roof({r, {}}, {s, {}, ridge}, eaves, top);
         ASSERT_TRUE(roof);
         double highest = -INFINITY;
         for (int k = 0; k < 100; ++k) {
@@ -187,12 +207,15 @@ TEST(RoofShapes, DirectionsAsDegreesOrCompassPoints) {
 // ---- through the GeoJSON reader ----
 
 constexpr const char* kRoofs = R"({"type":"FeatureCollection","features":[
-{"type":"Feature","id":"gable","properties":{"height":12,"roof:shape":"gabled","roof:height":4},"geometry":{"type":"Polygon","coordinates":[[[0,0],[30,0],[30,20],[0,20],[0,0]]]}},
-{"type":"Feature","id":"hip","properties":{"height":"13","roof:shape":"Hipped","roof:levels":1,"building:levels":3},"geometry":{"type":"Polygon","coordinates":[[[40,0],[70,0],[70,20],[40,20],[40,0]]]}},
-{"type":"Feature","id":"pyramid","properties":{"building:levels":4,"roof:levels":2,"roof:shape":"pyramidal"},"geometry":{"type":"Polygon","coordinates":[[[80,0],[100,0],[105,10],[100,20],[80,20],[80,0]]]}},
+{"type":"Feature","id":"gable","properties":{"height":12,"roof:shape":"gabled","roof:height":4,"roof:orientation":"along"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[30,0],[30,20],[0,20],[0,0]]]}},
+{"type":"Feature","id":"hip","properties":{"height":"13","roof:shape":"Hipped","roof:height":"3 m","building:levels":3},"geometry":{"type":"Polygon","coordinates":[[[40,0],[70,0],[70,20],[40,20],[40,0]]]}},
+{"type":"Feature","id":"pyramid","properties":{"height":18,"roof:height":6,"roof:shape":"pyramidal"},"geometry":{"type":"Polygon","coordinates":[[[80,0],[100,0],[105,10],[100,20],[80,20],[80,0]]]}},
 {"type":"Feature","id":"shed","properties":{"height":5,"roof:shape":"skillion","roof:height":2,"roof:direction":"S"},"geometry":{"type":"Polygon","coordinates":[[[0,40],[10,40],[10,44],[0,44],[0,40]]]}},
 {"type":"Feature","id":"ell","properties":{"height":9,"roof:shape":"gabled","roof:height":3},"geometry":{"type":"Polygon","coordinates":[[[40,40],[60,40],[60,48],[48,48],[48,60],[40,60],[40,40]]]}},
-{"type":"Feature","id":"dome","properties":{"height":20,"roof:shape":"dome","roof:height":5},"geometry":{"type":"Polygon","coordinates":[[[80,40],[100,40],[100,60],[80,60],[80,40]]]}}
+{"type":"Feature","id":"dome","properties":{"height":20,"roof:shape":"dome","roof:height":5},"geometry":{"type":"Polygon","coordinates":[[[80,40],[100,40],[100,60],[80,60],[80,40]]]}},
+{"type":"Feature","id":"storeys","properties":{"building:levels":4,"roof:levels":2,"roof:shape":"pyramidal"},"geometry":{"type":"Polygon","coordinates":[[[80,80],[100,80],[100,100],[80,100],[80,80]]]}},
+{"type":"Feature","id":"guessed","properties":{"height":12,"roof:shape":"gabled","roof:levels":1,"roof:orientation":"along"},"geometry":{"type":"Polygon","coordinates":[[[0,80],[30,80],[30,90],[0,90],[0,80]]]}},
+{"type":"Feature","id":"canopy","properties":{"building":"roof","height":5,"roof:shape":"gabled","roof:height":1,"roof:orientation":"along"},"geometry":{"type":"Polygon","coordinates":[[[40,80],[60,80],[60,90],[40,90],[40,80]]]}}
 ]})";
 
 const CityObject& object(const City& c, const std::string& id) {
@@ -255,11 +278,23 @@ TEST(RoofShapesRead, PrismsUnderTheFacesNeverRiseAboveThem) {
     // The prisms are worth having: they reach well above the eaves.
     EXPECT_GT(reached, e.eaves + 0.5 * (e.top - e.eaves));
   }
-  for (const char* id : {"ell", "dome"}) {
+  // Shapes or footprints not modelled, eaves from guessed storey heights (roof:levels, or
+  // building:levels with roof:levels above them): no faces, the roof space open.
+  for (const char* id : {"ell", "dome", "guessed", "storeys"}) {
     const CityObject& o = object(c, id);
     EXPECT_TRUE(o.roof_prisms.empty()) << id;
     EXPECT_TRUE(roof_faces_of(o, o.occluders.at(0).top_z).empty()) << id;
   }
+  EXPECT_DOUBLE_EQ(object(c, "guessed").occluders.at(0).top_z, 9.0);
+  EXPECT_DOUBLE_EQ(object(c, "storeys").occluders.at(0).top_z, 12.0);
+  // A roof on open sides: no occluder, and nothing of it blocks a sight line.
+  const CityObject& canopy = object(c, "canopy");
+  EXPECT_TRUE(canopy.occluders.empty());
+  EXPECT_TRUE(canopy.roof_prisms.empty());
+  for (const Surface3& s : canopy.surfaces) EXPECT_FALSE(s.blocks);
+  EXPECT_FALSE(canopy.surfaces.empty());
+  EXPECT_DOUBLE_EQ(canopy.bbox.zmax, 5.0);
+  EXPECT_EQ(c.report.open_roofs, 1u);
 }
 
 TEST(RoofShapesRead, SurfacesAboveTheEavesBlockOnlyWhereTheShapeIsKnown) {
@@ -280,9 +315,10 @@ TEST(RoofShapesRead, SurfacesAboveTheEavesBlockOnlyWhereTheShapeIsKnown) {
     EXPECT_EQ(open_above, 5u);  // the prism over the eaves: where the roof may be, a target
     EXPECT_EQ(object(c, "gable").roof_prisms.empty(), !sloped);
     // A roof above its walls: the space over the eaves blocks nowhere but at the shape's faces
-    // (four on the hipped roof, five on the pentagon's pyramid). The pyramid's walls come from
-    // its storeys and its roof from roof:levels above them: never a solid prism to the top.
-    for (auto [id, eaves, faces] : {std::tuple{"hip", 10.0, 4u}, std::tuple{"pyramid", 12.0, 5u}}) {
+    // (four on the hipped roof, five on the pentagon's pyramid). The storeys' walls come from
+    // building:levels and their roof from roof:levels above them: never a solid prism to the top.
+    for (auto [id, eaves, faces] : {std::tuple{"hip", 10.0, 4u}, std::tuple{"pyramid", 12.0, 5u},
+                                    std::tuple{"storeys", 12.0, 0u}}) {
       std::size_t blocking_above = 0;
       for (const Surface3& s : object(c, id).surfaces) {
         double hi = -INFINITY;

@@ -578,6 +578,17 @@ TEST(ValidateCatches, GeoJsonGableSurfacesAreTheRoofsOwn) {
   EXPECT_EQ(got, want);
 }
 
+// (e) once more: the prisms under the gable's faces (the occluders RoofShapes.hpp gives rise
+// to) raised 2 m above the faces: the tower shows over the roof, and the validator catches them.
+TEST(ValidateCatches, GeoJsonGableRoofPrismsAboveTheirFaces) {
+  Scene s = Scene::read("gable.geojson");
+  const geometry::Polygon cells = s.rect(-15, 1.5, -2, 4);
+  ASSERT_FALSE(s.object("gable").roof_prisms.empty());
+  EXPECT_EQ(s.misses_of("tower", cells, 9, 10), 0u);  // the reader's prisms
+  for (geometry::RoofPrism& p : s.object("gable").roof_prisms) p.z0 += 2;
+  EXPECT_GT(s.misses_of("tower", cells, 9, 10), 0u);
+}
+
 // (f) A GeoJSON building:part with min_height=5 given occluder volume from the ground: the shed
 // behind shows under it, as in (c).
 TEST(ValidateCatches, GeoJsonRaisedPartFromTheGround) {

@@ -123,8 +123,10 @@ struct ReadReport {
   std::size_t raised_parts = 0;
   /// GeoJSON buildings and parts whose occluder was cut from `height` down to the eaves.
   std::size_t roof_eaves = 0;
-  /// Of those, the parts whose roof:shape gave the roof's faces (RoofShapes.hpp).
+  /// GeoJSON buildings and parts whose roof:shape gave the roof's faces (RoofShapes.hpp).
   std::size_t roof_shapes = 0;
+  /// GeoJSON buildings and parts that are roofs on open sides (building=roof): no occluder.
+  std::size_t open_roofs = 0;
   /// GeoJSON objects set on the terrain (TINRelief) of a CityJSON file read with them.
   std::size_t on_terrain = 0;
   /// OpenStreetMap buildings and parts assembled from multipolygon relations.

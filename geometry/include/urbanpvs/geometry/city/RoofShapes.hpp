@@ -4,16 +4,19 @@
 // roof may or may not fill. Its faces become the validator's blocking surfaces, and the prisms
 // under them (RoofPrisms.hpp) occluders whose sloped edges cast shadows (thesis 4.2.1, 7.3.2).
 //
-// Thesis 7.1: an occluder must lie inside the building. Every model here rises from the eaves
-// E to the top T as z(p) = E + (T - E)·g(p) with g in [0, 1], and lies nowhere above the roof
-// the tag names:
-//   gabled  (also for round and gambrel roofs, whose profiles bulge above its straight slopes),
-//   hipped  (also for half-hipped and mansard roofs, likewise above it),
+// Thesis 7.1: an occluder must lie inside the building. Every model rises from the eaves E to
+// the top T as z(p) = E + (T - E)·g(p) with g in [0, 1], and lies nowhere above any roof the
+// tags allow:
+//   gabled (and round, gambrel, whose profiles bulge above its straight slopes) with
+//     roof:orientation given: the ridge along the longer sides (along) or across them;
+//   gabled without roof:orientation, and hipped (half-hipped, mansard): the pyramid over the
+//     rectangle. It is the lower envelope of the gables of both ridge directions, and of hipped
+//     roofs of every ridge length (the tags give neither a hip's slope nor its ridge's length);
 //   pyramidal (convex footprints), skillion (with roof:direction).
 // Other shapes (dome, onion, cone, saltbox, ...) and footprints that do not suit the model get
-// none: the reader then keeps the roof as a space it may fill, as before. The same holds with
-// unknown eaves (E = the part's base): the real walls reach at least E, so the real roof lies
-// above the model with the lowest eaves.
+// none: the reader then keeps the roof as a space it may fill, as before. The caller gives E
+// and T only where the tags give them in metres (RoofShapes are not built on guessed storey
+// heights: eaves above the real ones would lift the whole model above the roof).
 #pragma once
 
 #include <optional>
@@ -25,12 +28,15 @@
 
 namespace urbanpvs::geometry {
 
+/// roof:orientation: the ridge along the longer sides or across them; Unknown when not tagged.
+enum class RidgeOrientation { Unknown, Along, Across };
+
 /// The tags that shape a roof.
 struct RoofShapeTags {
   std::string shape;  ///< roof:shape, lower case
   /// roof:direction: the way the roof faces (downhill), degrees clockwise from north.
   std::optional<double> direction;
-  bool across = false;  ///< roof:orientation=across: the ridge runs across the longer sides
+  RidgeOrientation ridge = RidgeOrientation::Unknown;
 };
 
 /// A modelled roof: open rings in the footprint's frame, heights absolute like its eaves and top.
@@ -41,10 +47,11 @@ struct ShapedRoof {
 
 /// The roof over `footprint` (a cleaned polygon: counter-clockwise outer ring) with walls up to
 /// `eaves` and its top at `top`, or nothing when the shape is none of those modelled or the
-/// footprint does not suit it: gabled and hipped roofs need a quadrilateral with right angles
-/// (within 10°, vertices less than 10 cm outside its sides or 2 cm inside them dropped, so that
-/// it lies within the footprint up to the rounding of OSM's coordinates), pyramidal roofs a
-/// convex footprint, skillions a roof:direction; none has holes.
+/// footprint does not suit it: gabled and hipped roofs need a rectangle (corners square within
+/// 10°, once vertices less than 10 cm outside its sides or 2 cm inside them are dropped, and no
+/// vertex more than 2 cm inside it, so that it lies within the footprint up to the rounding of
+/// OSM's coordinates), pyramidal roofs a convex footprint, skillions a roof:direction; none
+/// has holes.
 std::optional<ShapedRoof> shaped_roof(const Polygon& footprint, const RoofShapeTags& tags,
                                       double eaves, double top);
 
