@@ -423,17 +423,15 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
     ++report.open_roofs;
     return {};
   }
-  // A roof cut to its eaves: the walls stand up to the eaves for sure; the roof above them has
-  // a shape the tags do not give, so its prism only bounds where the building may be (thesis
-  // 7.1): the validator aims at it but never lets it block.
-  // Where roof:shape names a roof that shaped_roof models, its faces and the walls above the
-  // eaves are surfaces the building surely has (RoofShapes.hpp): they block, and the prisms
-  // under the faces occlude (ReadOptions::sloped_roofs).
-  // A roof of its own above the walls: cut from `height` to the eaves, or roof:levels above
-  // building:levels.
+  // A roof of its own above the walls (cut from `height` to the eaves, or roof:levels above
+  // building:levels): the walls stand up to the eaves for sure; the roof above them has a shape
+  // the tags do not give, so its prism only bounds where the building may be (thesis 7.1): the
+  // validator aims at it but never lets it block. Where roof:shape names a roof that
+  // shaped_roof models, between eaves and top that the tags give in metres (`height`, and
+  // roof:height below it), its faces and the walls above the eaves are surfaces the building
+  // surely has (RoofShapes.hpp): they block, and the prisms under the faces occlude
+  // (ReadOptions::sloped_roofs).
   const bool roof_above = w.top > w.eaves;
-  // The shape is modelled only between eaves and top that the tags give in metres: `height`,
-  // and roof:height below it (RoofShapes.hpp).
   const bool measured = f.height && !f.height_from_levels && f.roof_height_in_metres && w.cut &&
                         w.eaves > f.min_height;
   const RoofShapeTags tags{f.roof_shape, f.roof_direction, f.roof_ridge};
