@@ -166,6 +166,11 @@ struct Feature {
   bool underground = false;
 };
 
+std::string lower_case(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
 const Json& properties_of(const Json& feature) {
   static const Json none = Json::object();
   return feature.contains("properties") && feature["properties"].is_object() ? feature["properties"]
@@ -224,8 +229,7 @@ struct HeightReader {
     const char* shape_key = given(props, "roof:shape") ? "roof:shape" : "roof_shape";
     f.underground = string_member(props, "location") == "underground" ||
                     (props.contains("is_underground") && props["is_underground"] == true);
-    f.roof_shape = string_member(props, shape_key);
-    for (char& c : f.roof_shape) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    f.roof_shape = lower_case(string_member(props, shape_key));
     if (given(props, shape_key) && !props[shape_key].is_string())
       f.roof_shape = props[shape_key].dump();  // "roof:shape": 9 is no shape we know: not flat
     for (const char* key : {"roof:direction", "roof_direction"}) {
@@ -239,8 +243,7 @@ struct HeightReader {
                                   "; ignored");
     }
     for (const char* key : {"roof:orientation", "roof_orientation"}) {
-      std::string v = string_member(props, key);
-      for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const std::string v = lower_case(string_member(props, key));
       if (v == "along") f.roof_ridge = RidgeOrientation::Along;
       if (v == "across") f.roof_ridge = RidgeOrientation::Across;
     }

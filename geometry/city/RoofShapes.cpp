@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "urbanpvs/geometry/city/RoofShapes.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 
 namespace urbanpvs::geometry {
 namespace {
@@ -20,9 +22,10 @@ constexpr double kRightAngle = 0.1737;
 // Heights within this (m) of the eaves count as the eaves: no wall above them.
 constexpr double kAtEaves = 0.001;
 
-double distance_to_line(Vec2 p, Vec2 a, Vec2 b) {
-  const double len = glm::length(b - a);
-  return len > 0 ? std::abs(cross(b - a, p - a)) / len : glm::length(p - a);
+// How far p lies left of the line from a to b (m): inside a counter-clockwise ring's side,
+// negative outside it.
+double left_of(Vec2 p, Vec2 a, Vec2 b) {
+  return cross(b - a, p - a) / glm::length(b - a);
 }
 
 // The ring (counter-clockwise) without the vertices that lie within kOnSide outside the chord
@@ -33,9 +36,8 @@ Ring corners_of(Ring r) {
     dropped = false;
     for (std::size_t i = 0; i < r.size() && r.size() > 3; ++i) {
       const Vec2 prev = r[(i + r.size() - 1) % r.size()], next = r[(i + 1) % r.size()];
-      const double off = distance_to_line(r[i], prev, next);
-      const bool outside = cross(next - prev, r[i] - prev) < 0;
-      if (off < (outside ? kOnSide : kOnChord) &&
+      const double inside = left_of(r[i], prev, next);
+      if (inside < kOnChord && -inside < kOnSide &&
           dot(r[i] - prev, next - r[i]) > 0) {  // between them, not a spike
         r.erase(r.begin() + static_cast<std::ptrdiff_t>(i));
         dropped = true;
@@ -59,11 +61,7 @@ bool convex(const Ring& r) {
 bool within_footprint(const std::array<Vec2, 4>& q, const Ring& r) {
   for (Vec2 v : r) {
     double inside = INFINITY;  // distance to the nearest side, when inside every side
-    for (std::size_t i = 0; i < 4; ++i) {
-      const Vec2 a = q[i], b = q[(i + 1) % 4];
-      const double d = cross(b - a, v - a) / glm::length(b - a);
-      inside = std::min(inside, d);
-    }
+    for (std::size_t i = 0; i < 4; ++i) inside = std::min(inside, left_of(v, q[i], q[(i + 1) % 4]));
     if (inside > kOnChord) return false;
   }
   return true;
@@ -107,15 +105,11 @@ ShapedRoof gabled(const std::array<Vec2, 4>& q, double eaves, double top) {
 // A pyramid: a triangle from each side of the convex ring up to the apex over its centroid, at
 // the top. Each side must face the apex, so the triangles tile the ring.
 std::optional<ShapedRoof> pyramid(const Ring& r, double eaves, double top) {
-  Vec2 centroid{0, 0};
-  double area2 = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    const Vec2 a = r[i], b = r[(i + 1) % r.size()];
-    const double w = cross(a, b);
-    centroid += w * (a + b);
-    area2 += w;
-  }
+  const double area2 = signed_area2(r);
   if (!(area2 > 0)) return std::nullopt;
+  Vec2 centroid{0, 0};
+  for (std::size_t i = 0; i < r.size(); ++i)
+    centroid += cross(r[i], r[(i + 1) % r.size()]) * (r[i] + r[(i + 1) % r.size()]);
   centroid /= 3 * area2;
   ShapedRoof roof;
   for (std::size_t i = 0; i < r.size(); ++i) {
@@ -184,10 +178,13 @@ std::optional<double> roof_direction(std::string_view text) {
   static constexpr std::array<const char*, 16> kPoints = {"n",  "nne", "ne", "ene", "e",  "ese",
                                                           "se", "sse", "s",  "ssw", "sw", "wsw",
                                                           "w",  "wnw", "nw", "nnw"};
-  std::string lower(text);
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  auto same = [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) == static_cast<unsigned char>(b);
+  };
   for (std::size_t i = 0; i < kPoints.size(); ++i)
-    if (lower == kPoints[i]) return 22.5 * static_cast<double>(i);
+    if (std::equal(text.begin(), text.end(), kPoints[i], kPoints[i] + std::strlen(kPoints[i]),
+                   same))
+      return 22.5 * static_cast<double>(i);
   return std::nullopt;
 }
 
