@@ -7,6 +7,7 @@
 // no occluder; a footprint from a roof's projection is used only where walls stand under it.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -30,6 +31,8 @@ using Vertex = Vec3;
 constexpr double kRaisedPart = 1.0;
 // Non-vertical faces whose projection is smaller than this (m²) add nothing to a footprint.
 constexpr double kMinProjectedArea = 1e-4;
+// The largest coordinate (m, or degrees) a vertex may have after its transform (input_vertex).
+constexpr double kFarthestCoordinate = 1e8;
 
 struct Surface {
   const Json* rings = nullptr;  // [[i, j, k, ...], [hole], ...]
@@ -114,8 +117,21 @@ class CityJsonFile {
     if (!v.is_array() || v.size() != 3)
       throw InputError(InputProblem::BadStructure, file_, what, "is not [x, y, z]");
     Vertex out;
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
       out[k] = json_number(v[k], file_, what, "coordinate") * scale_[k] + translate_[k];
+      // No reference system puts a place on Earth 1e8 m from its origin (its circumference is
+      // 4e7 m; zone-prefixed eastings stay under 1e8). A vertex beyond that is a broken
+      // transform or an integer past any precision: in the local frame every such vertex
+      // would round to the same point, and the city would silently collapse.
+      if (!(std::abs(out[k]) <= kFarthestCoordinate)) {
+        char where[160];
+        std::snprintf(where, sizeof where,
+                      "coordinate %.6g (after the transform) is farther than %.0g from its "
+                      "reference system's origin",
+                      out[k], kFarthestCoordinate);
+        throw InputError(InputProblem::Implausible, file_, what, where);
+      }
+    }
     return out;
   }
 
@@ -623,11 +639,41 @@ struct Objects {
     return it == by_id.end() ? nullptr : it->second;
   }
 
-  bool has_known_parent(const Json& obj) const {
-    if (!obj.contains("parents") || !obj["parents"].is_array()) return false;
-    for (const Json& p : obj["parents"])
-      if (p.is_string() && find(p.get<std::string>())) return true;
+  // Whether the object `id` is read with another one: collect_parts reads the BuildingPart
+  // children a Building or BuildingPart lists, down from the one read on its own. Any other
+  // parent reads nothing of it (a CityObjectGroup, which CityJSON 2.0 members may name among
+  // their "parents"; an extension's type; a parent that does not list it among its children;
+  // a Building under a Building): such an object is read on its own, or it would be lost
+  // without a word. Parents that list each other round a cycle all read on their own, and
+  // collect_parts then refuses the cycle.
+  bool read_with_parent(const std::string& id, const Json& obj) const {
+    std::string at = id;
+    const Json* node = &obj;
+    for (int depth = 0; depth <= 32; ++depth) {
+      const std::string up = collecting_parent(at, *node);
+      if (up.empty()) return depth > 0;
+      at = up;
+      node = find(up);
+    }
     return false;
+  }
+
+  // The Building or BuildingPart that `obj` (a BuildingPart) names among its parents and that
+  // lists `id` among its children, or "".
+  std::string collecting_parent(const std::string& id, const Json& obj) const {
+    if (string_member(obj, "type") != "BuildingPart" || !obj.contains("parents") ||
+        !obj["parents"].is_array())
+      return {};
+    for (const Json& p : obj["parents"]) {
+      const Json* parent = p.is_string() ? find(p.get<std::string>()) : nullptr;
+      if (!parent || !parent->is_object()) continue;
+      const std::string type = string_member(*parent, "type");
+      if (type != "Building" && type != "BuildingPart") continue;
+      if (!parent->contains("children") || !(*parent)["children"].is_array()) continue;
+      for (const Json& c : (*parent)["children"])
+        if (c.is_string() && c.get<std::string>() == id) return p.get<std::string>();
+    }
+    return {};
   }
 
   // The Building or BuildingPart that `obj` (of another type) belongs to, or "".
@@ -879,11 +925,11 @@ void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMap
       ++city.report.ignored_types[type.empty() ? "(no type)" : type];
       continue;
     }
-    if (objs.has_known_parent(obj)) continue;  // read with its parent
+    if (objs.read_with_parent(id, obj)) continue;
     if (type == "BuildingPart")
       city.report.warnings.push_back(file + ": " + id +
-                                     ": BuildingPart without a known parent "
-                                     "read as a building of its own");
+                                     ": BuildingPart that no Building lists among its "
+                                     "children, read as a building of its own");
     CityObject o;
     std::string why_not;
     // The building's own attribute (not its parts'): the object a PVS lists is the building.

@@ -159,9 +159,25 @@ Json parse(std::string_view text, const std::string& name) {
 
 // A text file's city: CityGML, CityJSON (or a sequence of it), GeoJSON, or OpenStreetMap data
 // from the Overpass API in JSON, which the OSM reader's assembly takes (OverpassJson.cpp).
+// A value of a type that no check of the readers expected (an index where an object stands, a
+// string for a number) surfaces as nlohmann's exception from deep inside a reader. It is still
+// the input's fault: refused as its structure, naming the file, never an internal failure or an
+// abort of a tool that only catches input errors.
+template <class Read>
+auto refusing_type_errors(const std::string& name, Read&& read) {
+  try {
+    return read();
+  } catch (const Json::exception& e) {
+    throw InputError(InputProblem::BadStructure, name, "",
+                     std::string("a value of an unexpected type (") + e.what() + ")");
+  }
+}
+
 Json parse_city(std::string_view text, const std::string& name, ReadReport& report) {
   Json doc = parse(text, name);
-  if (detail::is_overpass_json(doc)) return detail::read_overpass_json(doc, name, report);
+  if (detail::is_overpass_json(doc))
+    return refusing_type_errors(name,
+                                [&] { return detail::read_overpass_json(doc, name, report); });
   return doc;
 }
 
@@ -173,6 +189,10 @@ Format detect(const Json& doc, const std::string& name) {
   const std::string type = doc["type"].get<std::string>();
   if (type == "CityJSON") return Format::CityJson;
   if (type == "FeatureCollection" || type == "Feature") return Format::GeoJson;
+  if (type == "CityJSONFeature")  // its vertices mean nothing without the header's transform
+    throw InputError(InputProblem::UnsupportedFormat, name, "",
+                     "a lone CityJSONFeature: a CityJSON text sequence (.city.jsonl) starts "
+                     "with the CityJSON object that holds its transform");
   throw InputError(InputProblem::UnsupportedFormat, name, "",
                    "top-level type \"" + type + "\" is neither CityJSON nor a GeoJSON feature");
 }
@@ -312,6 +332,10 @@ struct Reader {
   std::vector<bool> relative;  // per object: heights relative to the ground (GeoJSON)
 
   void add(Json doc, const std::string& name) {
+    refusing_type_errors(name, [&] { add_document(doc, name); });
+  }
+
+  void add_document(Json& doc, const std::string& name) {
     const Format format = detect(doc, name);
     if (format == Format::CityJson) detail::expand_geometry_instances(doc, name);
     auto scan_of = [&](const Json& d) {
@@ -380,8 +404,18 @@ struct Reader {
   }
 
   City finish(const std::string& name) {
-    if (city.objects.empty())
-      throw InputError(InputProblem::EmptyCity, name, "", "no building found");
+    if (city.objects.empty()) {
+      // Say what the files held instead: a city of GenericCityObjects or of roads is refused
+      // for what it is, not for being empty.
+      std::string held;
+      for (const auto& [type, count] : city.report.ignored_types)
+        held += (held.empty() ? "" : ", ") + std::to_string(count) + " " + type;
+      throw InputError(InputProblem::EmptyCity, name, "",
+                       held.empty() ? "no building found"
+                                    : "no building found (only objects of types that are not "
+                                      "read: " +
+                                          held + ")");
+    }
     const Box2 b = city.bounds().xy;
     const double extent = std::max(b.max.x - b.min.x, b.max.y - b.min.y);
     if (extent > options.max_extent) {

@@ -71,9 +71,15 @@ void expand_geometry_instances(Json& doc, const std::string& file) {
           !g["boundaries"][0].is_number_unsigned() ||
           g["boundaries"][0].get<std::size_t>() >= vertices.size())
         bad(file, id, "\"boundaries\" must hold the index of its reference vertex");
-      const Json& anchor = vertices[g["boundaries"][0].get<std::size_t>()];
-      if (!anchor.is_array() || anchor.size() != 3)
-        bad(file, id, "its reference vertex is no point");
+      // The reference vertex by value: the placed vertices are appended to the same array, and
+      // a reference into it would dangle once the array grows.
+      std::array<double, 3> anchor{};
+      {
+        const Json& a = vertices[g["boundaries"][0].get<std::size_t>()];
+        if (!a.is_array() || a.size() != 3) bad(file, id, "its reference vertex is no point");
+        for (std::size_t r = 0; r < 3; ++r)
+          anchor[r] = json_number(a[r], file, id, "reference vertex");
+      }
       std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
       if (g.contains("transformationMatrix")) {
         const Json& t = g["transformationMatrix"];
@@ -92,7 +98,7 @@ void expand_geometry_instances(Json& doc, const std::string& file) {
         for (std::size_t r = 0; r < 3; ++r) {
           const double real =
               m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
-          placed.push_back(json_number(anchor[r], file, id, "reference vertex") + real / scale[r]);
+          placed.push_back(anchor[r] + real / scale[r]);
         }
         vertices.push_back(std::move(placed));
       }

@@ -24,6 +24,7 @@ namespace {
 using namespace urbanpvs::geometry;
 
 constexpr int kExitUsage = urbanpvs::exit_code::kUsage;
+constexpr int kExitProcessing = urbanpvs::exit_code::kProcessing;
 constexpr int kExitOutput = urbanpvs::exit_code::kOutput;
 
 void print_summary(const City& city, const std::vector<Block>& blocks,
@@ -173,6 +174,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "urbanpvs-cityinfo: %s\n", e.what());
     return exit_code(e.problem());
+  } catch (const std::exception& e) {  // a failure of ours, not of the input: no abort
+    std::fprintf(stderr, "urbanpvs-cityinfo: %s\n", e.what());
+    return kExitProcessing;
   }
   return 0;
 }

@@ -84,4 +84,42 @@ TEST(GeometryTemplates, ABrokenInstanceIsRefusedNamingItsObject) {
   }
 }
 
+TEST(GeometryTemplates, ManyInstancesOfOneReferenceVertexEachInItsPlace) {
+  // Twelve kiosks at the same reference vertex, moved 20 m apart by their matrices: placing
+  // each appends the template's vertices to the array that holds the reference vertex, so the
+  // reference must be read before the array grows (the CityJSON conformance corpus's
+  // geometry_templates_reuse crashed the reader when it was read after).
+  std::string objects;
+  for (int k = 0; k < 12; ++k) {
+    if (k > 0) objects += ",";
+    objects += "\"kiosk" + std::to_string(k) +
+               R"(": {"type": "Building", "geometry": [{"type": "GeometryInstance",
+                 "template": 0, "boundaries": [1], "transformationMatrix":
+                 [1, 0, 0, )" +
+               std::to_string(20 * k) + R"(, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}]})";
+  }
+  const std::string text = R"({"type": "CityJSON", "version": "2.0",
+    "transform": {"scale": [0.01, 0.01, 0.01], "translate": [84000, 447000, 0]},
+    "geometry-templates": {"templates": [{"type": "Solid", "lod": "1", "boundaries":
+        [[[[0, 3, 2, 1]], [[4, 5, 6, 7]], [[0, 1, 5, 4]], [[1, 2, 6, 5]], [[2, 3, 7, 6]],
+          [[3, 0, 4, 7]]]]}],
+      "vertices-templates": [[0, 0, 0], [10, 0, 0], [10, 10, 0], [0, 10, 0],
+                             [0, 0, 12], [10, 0, 12], [10, 10, 12], [0, 10, 12]]},
+    "CityObjects": {)" + objects +
+                           R"(},
+    "vertices": [[0, 0, 0], [500, 700, 0]]})";
+  const City city = read_city_text(text, "kiosks.city.json");
+  ASSERT_EQ(city.objects.size(), 12u);
+  for (std::size_t k = 0; k < 12; ++k) {
+    const CityObject& kiosk = city.objects[k];
+    EXPECT_EQ(kiosk.source_id, "kiosk" + std::to_string(k));
+    // The reference vertex lies at (5, 7) m from the translate; the local frame's origin is
+    // the first kiosk's corner.
+    EXPECT_NEAR(kiosk.bbox.xy.min.x - city.objects[0].bbox.xy.min.x, 20.0 * k, 1e-9);
+    EXPECT_NEAR(kiosk.bbox.xy.max.x - kiosk.bbox.xy.min.x, 10.0, 1e-9);
+    EXPECT_NEAR(kiosk.bbox.xy.min.y, city.objects[0].bbox.xy.min.y, 1e-9);
+    EXPECT_NEAR(kiosk.bbox.zmax - kiosk.bbox.zmin, 12.0, 1e-9);
+  }
+}
+
 }  // namespace

@@ -442,6 +442,71 @@ TEST(ReadCity, CityJsonEmptySurfaceIsPassedOver) {
   EXPECT_EQ(b.surfaces.size(), a.surfaces.size());
 }
 
+// Only a Building or BuildingPart that lists a BuildingPart among its children reads it (with
+// itself); an object whose "parents" name anything else (a CityObjectGroup, as CityJSON 2.0
+// group members may; an extension's type; a building that does not list it) is read on its
+// own. The reader once skipped every object with any known parent: a group member vanished
+// without a word (the CityJSON conformance corpus's cityjson_fake_complete).
+TEST(ReadCity, CityJsonObjectsUnderParentsThatReadNothingOfThemAreKept) {
+  // Boxes of 10 x 10 m, 12 m high, 20 m apart along x: box k uses vertices 8k .. 8k + 7.
+  auto box = [](int k) {
+    std::string b = "[";
+    const int v = 8 * k;
+    const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                             {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    for (int f = 0; f < 6; ++f) {
+      b += f ? ",[[" : "[[";
+      for (int i = 0; i < 4; ++i) b += (i ? "," : "") + std::to_string(v + faces[f][i]);
+      b += "]]";
+    }
+    return b + "]";
+  };
+  std::string vertices;
+  for (int k = 0; k < 5; ++k)
+    for (const auto& [x, y, z] : std::vector<std::array<int, 3>>{{0, 0, 0},
+                                                                 {10, 0, 0},
+                                                                 {10, 10, 0},
+                                                                 {0, 10, 0},
+                                                                 {0, 0, 12},
+                                                                 {10, 0, 12},
+                                                                 {10, 10, 12},
+                                                                 {0, 10, 12}})
+      vertices += std::string(vertices.empty() ? "" : ",") + "[" + std::to_string(x + 20 * k) +
+                  "," + std::to_string(y) + "," + std::to_string(z) + "]";
+  auto solid = [&](int k) {
+    return R"("geometry":[{"type":"MultiSurface","lod":"1","boundaries":)" + box(k) + "}]";
+  };
+  const std::string text =
+      R"({"type":"CityJSON","version":"2.0","transform":{"scale":[1,1,1],)"
+      R"("translate":[85000,446000,0]},"metadata":{"referenceSystem":)"
+      R"("https://www.opengis.net/def/crs/EPSG/0/7415"},"CityObjects":{)"
+      R"("grp":{"type":"CityObjectGroup","children_roles":[],"children":["member"]},)"
+      R"("member":{"type":"Building","parents":["grp"],)" +
+      solid(0) + "}," +
+      R"("noise":{"type":"+NoiseBuilding","children":["part_of_noise"]},)"
+      R"("part_of_noise":{"type":"BuildingPart","parents":["noise"],)" +
+      solid(1) + "}," +
+      R"("house":{"type":"Building","children":["wing"]},)"
+      R"("wing":{"type":"BuildingPart","parents":["house"],)" +
+      solid(2) + "}," + R"("stray":{"type":"BuildingPart","parents":["house"],)" + solid(3) + "}," +
+      R"("annex":{"type":"Building","parents":["house"],)" + solid(4) +
+      "}},"
+      R"("vertices":[)" +
+      vertices + "]}";
+  const City city = read_city_text(text, "parents.city.json", {});
+  std::vector<std::string> ids;
+  for (const CityObject& o : city.objects) ids.push_back(o.source_id);
+  // "wing" is read with "house"; every other building or part is an object of its own.
+  EXPECT_EQ(ids, (std::vector<std::string>{"member", "part_of_noise", "house", "stray", "annex"}));
+  for (const CityObject& o : city.objects) {
+    EXPECT_TRUE(o.occludes) << o.source_id;
+    EXPECT_NEAR(o.bbox.zmax - o.bbox.zmin, 12.0, 1e-9) << o.source_id;
+  }
+  // The house holds its wing: the box 40 .. 50 m east of the first.
+  const CityObject& house = city.objects[2];
+  EXPECT_NEAR(house.bbox.xy.max.x - city.objects[0].bbox.xy.min.x, 50.0, 1e-9);
+}
+
 TEST(ReadCity, FilesInOneCrsAreReadTogether) {
   // The counterpart of mixed_crs_a + mixed_crs_b: the same file twice shares its CRS.
   const std::string a = (kTestData / "bad" / "mixed_crs_a.city.json").string();
