@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "urbanpvs/preprocess/visibility/AlsoForAvx2.hpp"
+#include "urbanpvs/preprocess/visibility/DirectionAngle.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
@@ -54,6 +55,18 @@ double wrap_pi(double a) {
   while (a > std::numbers::pi) a -= 2 * std::numbers::pi;
   while (a <= -std::numbers::pi) a += 2 * std::numbers::pi;
   return a;
+}
+
+// Whether `p` lies within the bounding box of `ring` (borders included).
+bool within_bounds(const geometry::Ring& ring, Vec2 p) {
+  bool left = false, right = false, below = false, above = false;
+  for (const Vec2& v : ring) {
+    left |= v.x <= p.x;
+    right |= v.x >= p.x;
+    below |= v.y <= p.y;
+    above |= v.y >= p.y;
+  }
+  return left && right && below && above;
 }
 
 }  // namespace
@@ -209,11 +222,11 @@ SampleHorizon::BoxView SampleHorizon::view(const geometry::Box3& box) const {
   // The box does not contain the sample, so seen from it the box spans less than π around the
   // direction to its centre.
   const Vec2 c = 0.5 * (rel.min + rel.max);
-  const double base = std::atan2(c.y, c.x);
+  const double base = direction_angle(c.y, c.x);
   v.lo = std::numeric_limits<double>::infinity();
   v.hi = -v.lo;
   auto bound = [&](Vec2 p) {
-    const double a = std::atan2(geometry::cross(c, p), geometry::dot(c, p));
+    const double a = direction_angle(geometry::cross(c, p), geometry::dot(c, p));
     v.lo = std::min(v.lo, a);
     v.hi = std::max(v.hi, a);
   };
@@ -302,7 +315,7 @@ bool SampleHorizon::hides_point(Vec2 p, double top) const {
   const Vec2 v{p.x - sample_.x, p.y - sample_.y};
   const double dist = ground_length(v.x, v.y);
   if (!(dist > 0)) return false;
-  const double a = std::atan2(v.y, v.x);
+  const double a = direction_angle(v.y, v.x);
   // A point on a sector border belongs to both sectors: test both.
   for (double slack : {-kAngleSlack, kAngleSlack}) {
     const int b = bin_of(static_cast<long long>(std::floor((a + slack) / kSector)));
@@ -314,7 +327,11 @@ bool SampleHorizon::hides_point(Vec2 p, double top) const {
 void SampleHorizon::add(const geometry::Occluder& occluder) {
   if (!(occluder.top_high() > sample_.z)) return;  // walls below the eye hide nothing rising
   add_ring(occluder.shape.outer, occluder, false);
-  for (const geometry::Ring& h : occluder.shape.holes) add_ring(h, occluder, true);
+  // A hole's walls count only from a sample inside it (add_ring); a sample outside the hole's
+  // bounds is not, and the hole's vertex directions (one atan2 each) need not be computed to
+  // find that out. Courtyards are most holes, and most samples see them from outside.
+  for (const geometry::Ring& h : occluder.shape.holes)
+    if (within_bounds(h, {sample_.x, sample_.y})) add_ring(h, occluder, true);
 }
 
 // Closes sectors t0..t1 (unwrapped numbers) with the facing walls among edges k0..k1 of `ring`
@@ -448,10 +465,11 @@ void SampleHorizon::add_ring(const geometry::Ring& ring, const geometry::Occlude
   angle_.resize(n + 1);
   vertex_distance_.resize(n);
   const Vec2 v0 = ring[0] - s;
-  angle_[0] = std::atan2(v0.y, v0.x);
+  angle_[0] = direction_angle(v0.y, v0.x);
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 a = ring[k] - s, b = ring[(k + 1) % n] - s;
-    angle_[k + 1] = angle_[k] + wrap_pi(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
+    angle_[k + 1] =
+        angle_[k] + wrap_pi(direction_angle(geometry::cross(a, b), geometry::dot(a, b)));
     vertex_distance_[k] = ground_length(a.x, a.y);
   }
   const double turn = angle_[n] - angle_[0];
