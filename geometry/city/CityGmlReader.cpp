@@ -34,6 +34,7 @@
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "CityReaders.hpp"
@@ -113,11 +114,20 @@ std::optional<int> lod_property(std::string_view n) {
 }
 
 // Reference systems as CityGML files name them: the German surveying offices' own names
-// ("urn:adv:crs:ETRS89_UTM32*DE_DHHN2016_NH") name the UTM zone on ETRS89; everything else,
-// compound URNs included, is normalise_crs's.
+// ("urn:adv:crs:ETRS89_UTM32*DE_DHHN2016_NH") name the UTM zone on ETRS89 or, in older data
+// (Bavaria's LoD2 among them), the Gauss-Krüger zone on DHDN; everything else, compound URNs
+// included, is normalise_crs's.
 std::string horizontal_crs(const std::string& name) {
-  if (name.find("ETRS89_UTM32") != std::string::npos) return "EPSG:25832";
-  if (name.find("ETRS89_UTM33") != std::string::npos) return "EPSG:25833";
+  static constexpr std::pair<const char*, const char*> kAdvNames[] = {
+      {"ETRS89_UTM31", "EPSG:25831"}, {"ETRS89_UTM32", "EPSG:25832"},
+      {"ETRS89_UTM33", "EPSG:25833"}, {"DE_DHDN_3GK2", "EPSG:31466"},
+      {"DE_DHDN_3GK3", "EPSG:31467"}, {"DE_DHDN_3GK4", "EPSG:31468"},
+      {"DE_DHDN_3GK5", "EPSG:31469"}};
+  for (const auto& [adv, epsg] : kAdvNames)
+    if (name.find(adv) != std::string::npos) return epsg;
+  // "#local-CRS-1": a reference system the file defines itself (CityGML 3.0's EngineeringCRS,
+  // a local Cartesian frame in metres), read as a file that names none is: local metres.
+  if (!name.empty() && name.front() == '#') return {};
   return name;  // compound URNs: normalise_crs takes their horizontal part
 }
 

@@ -415,6 +415,13 @@ PartResult read_part(const CityJsonFile& f, const Json& obj, const std::string& 
 // Tolerance (m) for a wall to stand under a roof edge and for a wall outline to lie under the
 // roof: rounding of stored coordinates, far below the occluder shrinking that follows.
 constexpr double kWallTolerance = 0.02;
+// How far (m) walls may stand from a GroundSurface's edge and still hold it up. Producers often
+// draw the ground apart from the walls (Zürich's LoD2: a notch of 0.7 m cut straight across);
+// the ground test is after walls that are not there at all (an XLink to a missing wall, a
+// hole in the ground under a roof that closes over it). A ground drawn up to this far beyond its
+// walls is left to the occluder shrinking by ε downstream (1 m by default, thesis 7.2), as
+// before the test.
+constexpr double kGroundWallReach = 1.0;
 
 // A vertical wall in plan: the thin rectangle t in [t0, t1] along d, s in [s0, s1] along n.
 struct WallPlan {
@@ -437,17 +444,17 @@ std::optional<WallPlan> wall_plan(const Classified& c) {
   return w;
 }
 
-// True when walls stand under the whole segment ab (within kWallTolerance).
-bool on_walls(Vec2 a, Vec2 b, const std::vector<WallPlan>& walls) {
+// True when walls stand under the whole segment ab (within `tolerance`).
+bool on_walls(Vec2 a, Vec2 b, const std::vector<WallPlan>& walls, double tolerance) {
   const Vec2 ab = b - a;
   const double len = std::hypot(ab.x, ab.y);
-  if (len <= kWallTolerance) return true;
+  if (len <= tolerance) return true;
   std::vector<std::pair<double, double>> covered;
   for (const WallPlan& w : walls) {
     double lo = 0, hi = 1;
     for (const auto& [axis, m0, m1] : {std::tuple{w.d, w.t0, w.t1}, std::tuple{w.n, w.s0, w.s1}}) {
       const double pa = dot(a, axis), dp = dot(ab, axis);
-      const double q0 = m0 - kWallTolerance, q1 = m1 + kWallTolerance;
+      const double q0 = m0 - tolerance, q1 = m1 + tolerance;
       if (std::abs(dp) < 1e-12) {
         if (pa < q0 || pa > q1) hi = -1;
         continue;
@@ -459,7 +466,7 @@ bool on_walls(Vec2 a, Vec2 b, const std::vector<WallPlan>& walls) {
     if (hi > lo) covered.emplace_back(lo, hi);
   }
   std::sort(covered.begin(), covered.end());
-  const double gap = kWallTolerance / len;
+  const double gap = tolerance / len;
   double reach = 0;
   for (const auto& [lo, hi] : covered) {
     if (lo > reach + gap) break;
@@ -468,10 +475,11 @@ bool on_walls(Vec2 a, Vec2 b, const std::vector<WallPlan>& walls) {
   return reach >= 1 - gap;
 }
 
-bool outline_on_walls(const std::vector<Polygon>& plan, const std::vector<WallPlan>& walls) {
+bool outline_on_walls(const std::vector<Polygon>& plan, const std::vector<WallPlan>& walls,
+                      double tolerance = kWallTolerance) {
   bool ok = true;
   for (const Polygon& p : plan)
-    for_each_edge(p, [&](Vec2 a, Vec2 b) { ok = ok && on_walls(a, b, walls); });
+    for_each_edge(p, [&](Vec2 a, Vec2 b) { ok = ok && on_walls(a, b, walls, tolerance); });
   return ok;
 }
 
@@ -796,11 +804,31 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
     for (const Classified* c : r->of_kind(Classified::Wall))
       if (std::optional<WallPlan> w = wall_plan(*c)) walls.push_back(*w);
   std::vector<Polygon> ground_parts;
-  bool lost = false;  // a part on the ground left without footprint
+  bool lost = false;       // a part on the ground left without footprint
+  bool off_walls = false;  // a part whose ground plan no walls stand on
   for (const PartResult* r : standing) {
     std::vector<Polygon> occluder, footprint;
     if (r->has_ground) {
-      occluder = footprint = r->ground_plan;
+      footprint = r->ground_plan;
+      // The prism over a ground plan stands for walls round it; where the file has none (an
+      // XLink to a wall that is not there, a shell that is only a ground and a roof) the
+      // validator's rays pass where the prism would block them: no occluder for the part. The
+      // walls round its outer rings suffice. A hole needs none: a line into the prism through
+      // a hole's edge starts in the hole, and the building's walls and roof round the hole
+      // block it before it leaves (a courtyard under a roof that closes over it, drawn without
+      // inner walls).
+      std::vector<Polygon> outer_rings;
+      for (const Polygon& p : r->ground_plan) outer_rings.push_back(Polygon{p.outer, {}});
+      // (A LoD0 footprint has no walls to ask: its height is unknown, and it occludes nothing.)
+      if (r->height_unknown || outline_on_walls(outer_rings, walls, kGroundWallReach)) {
+        occluder = r->ground_plan;
+      } else {
+        ++objs.report.grounds_off_walls;
+        off_walls = true;
+        objs.report.warnings.push_back(objs.file.file() + ": " + r->id +
+                                       ": walls do not stand round its GroundSurface: no "
+                                       "occluder for this part");
+      }
     } else {
       GroundlessFootprint g =
           groundless_footprint(*r, walls, objs.file.file(), objs.options, objs.report);
@@ -826,6 +854,9 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
   if (lost && o.occluders.empty()) {
     o.occludes = false;
     why_not = "no footprint of positive area left after repair";
+  } else if (off_walls && o.occluders.empty()) {
+    o.occludes = false;
+    why_not = "no walls stand round its GroundSurface";
   }
   if (height_unknown) {
     // As tall as a building may be (ReadOptions::max_height); it occludes nothing.

@@ -419,10 +419,16 @@ struct Reader {
     const Box2 b = city.bounds().xy;
     const double extent = std::max(b.max.x - b.min.x, b.max.y - b.min.y);
     if (extent > options.max_extent) {
-      char what[160];
+      // Most often small projected coordinates that the values made look like degrees.
+      const bool guessed_degrees = city.frame.kind == LocalFrame::Kind::Geographic &&
+                                   options.coordinates == ReadOptions::Coordinates::Auto;
+      char what[256];
       std::snprintf(what, sizeof what,
-                    "the buildings span %.0f km, more than a city can (--max-extent %.0f m)",
-                    extent / 1000, options.max_extent);
+                    "the buildings span %.0f km, more than a city can (%.0f km)%s", extent / 1000,
+                    options.max_extent / 1000,
+                    guessed_degrees ? "; its coordinates were read as lon/lat degrees: give "
+                                      "--coordinates projected if they are metres"
+                                    : "");
       throw InputError(InputProblem::Implausible, name, "", what);
     }
     if (!options.terrain_path.empty()) read_terrain(name);

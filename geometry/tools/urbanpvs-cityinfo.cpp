@@ -69,11 +69,12 @@ void print_summary(const City& city, const std::vector<Block>& blocks,
       "             %zu roofs on open sides (building=roof) and %zu raised parts without "
       "occluder,\n"
       "             %zu footprints from walls under an overhanging roof, %zu parts without "
-      "footprint\n"
+      "footprint,\n"
+      "             %zu GroundSurfaces without walls round them\n"
       "terrain:     %zu GeoJSON objects set on the terrain; %zu installations merged into "
       "buildings\n",
       r.roof_eaves, r.roof_shapes, r.open_roofs, r.raised_parts, r.footprints_from_walls,
-      r.footprints_unknown, r.on_terrain, r.installations);
+      r.footprints_unknown, r.grounds_off_walls, r.on_terrain, r.installations);
   if (!r.terrain_note.empty()) std::printf("DEM:         %s\n", r.terrain_note.c_str());
   if (r.osm_multipolygons > 0)
     std::printf("OSM:         %zu buildings from multipolygons\n", r.osm_multipolygons);

@@ -158,6 +158,44 @@ TEST(CityGml, GenericAttributesAreWhatPayloadReads) {
   EXPECT_EQ(object_named(three, "house3").payload, "tile-3");  // 3.0, white space trimmed
 }
 
+// The German surveying offices' names for their reference systems (AdV), ETRS89 UTM and the
+// older DHDN Gauss-Krüger zones (Bavaria's LoD2), and a CityGML 3.0 reference to a local frame
+// the file defines: all read; the Gauss-Krüger names were refused as unknown (exit 13).
+TEST(CityGml, ReadsAdvNamesAndLocalFrames) {
+  auto one_box = [](const std::string& srs, double x, double y) {
+    std::string ring = "<gml:posList>";
+    for (const auto& [dx, dy, z] : std::vector<std::array<double, 3>>{
+             {0, 0, 0}, {0, 10, 0}, {10, 10, 0}, {10, 0, 0}, {0, 0, 0}})
+      ring += std::to_string(x + dx) + " " + std::to_string(y + dy) + " " + std::to_string(z) + " ";
+    ring += "</gml:posList>";
+    return "<?xml version=\"1.0\"?><CityModel xmlns=\"http://www.opengis.net/citygml/2.0\" "
+           "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" "
+           "xmlns:gml=\"http://www.opengis.net/gml\"><gml:boundedBy><gml:Envelope srsName=\"" +
+           srs +
+           "\" srsDimension=\"3\"/></gml:boundedBy><cityObjectMember><bldg:Building "
+           "gml:id=\"b\"><bldg:measuredHeight>9</bldg:measuredHeight><bldg:lod0FootPrint>"
+           "<gml:MultiSurface><gml:surfaceMember><gml:Polygon><gml:exterior><gml:LinearRing>" +
+           ring +
+           "</gml:LinearRing></gml:exterior></gml:Polygon></gml:surfaceMember>"
+           "</gml:MultiSurface></bldg:lod0FootPrint></bldg:Building></cityObjectMember>"
+           "</CityModel>";
+  };
+  for (const auto& [srs, want] : std::vector<std::pair<std::string, std::string>>{
+           {"urn:adv:crs:ETRS89_UTM32*DE_DHHN2016_NH", "EPSG:25832"},
+           {"urn:adv:crs:DE_DHDN_3GK4*DE_DHHN92_NH", "EPSG:31468"},
+           {"urn:adv:crs:DE_DHDN_3GK3", "EPSG:31467"}}) {
+    const City city = read_city_text(one_box(srs, 4468000, 5333000), "adv.gml", {});
+    EXPECT_EQ(city.frame.crs, want) << srs;
+    EXPECT_EQ(city.frame.kind, LocalFrame::Kind::Projected) << srs;
+    ASSERT_EQ(city.objects.size(), 1u) << srs;
+  }
+  const City local = read_city_text(one_box("#local-CRS-1", 12, 34), "local.gml", {});
+  EXPECT_EQ(local.frame.crs, "");
+  EXPECT_EQ(local.frame.kind, LocalFrame::Kind::Projected);
+  ASSERT_EQ(local.objects.size(), 1u);
+  EXPECT_NEAR(local.objects[0].bbox.xy.max.x - local.objects[0].bbox.xy.min.x, 10, 1e-9);
+}
+
 TEST(CityGml, TakesLatitudeFirstInEpsg4979) {
   // GML's axis order is the reference system's: latitude, longitude for EPSG:4979.
   const City city = read_city({kTestData + "/citygml/latitude_first_epsg4979.gml"}, {});

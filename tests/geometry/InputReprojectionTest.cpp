@@ -156,7 +156,8 @@ TEST(InputReprojection, SwissDatumNamesAreTheirGridsAndUnknownNamesStayErrors) {
     "transform": {"scale": [0.001, 0.001, 0.001], "translate": [683000, 247000, 400]},
     "metadata": {"referenceSystem": "NAME"},
     "CityObjects": {"house": {"type": "Building", "geometry": [{"type": "MultiSurface",
-      "lod": "1", "boundaries": [[[0, 3, 2, 1]], [[4, 5, 6, 7]]]}]}},
+      "lod": "1", "boundaries": [[[0, 3, 2, 1]], [[4, 5, 6, 7]], [[0, 1, 5, 4]], [[1, 2, 6, 5]],
+                                 [[2, 3, 7, 6]], [[3, 0, 4, 7]]]}]}},
     "vertices": [[0, 0, 0], [10000, 0, 0], [10000, 10000, 0], [0, 10000, 0],
                  [0, 0, 12000], [10000, 0, 12000], [10000, 10000, 12000], [0, 10000, 12000]]})";
   for (const auto& [name, code] :

@@ -507,6 +507,60 @@ TEST(ReadCity, CityJsonObjectsUnderParentsThatReadNothingOfThemAreKept) {
   EXPECT_NEAR(house.bbox.xy.max.x - city.objects[0].bbox.xy.min.x, 50.0, 1e-9);
 }
 
+// A GroundSurface holds a prism up only when walls stand round it. A shell that misses walls
+// (an XLink to a wall that is not in the file) let the validator's rays through where the prism
+// blocked them (misses on go-citygml's citygml10_building_parts.gml). A roof that closes over a
+// hole in the ground, with walls only round the outside, keeps its occluder, hole and all.
+TEST(ReadCity, CityJsonGroundSurfacesHoldOccludersOnlyOnWalls) {
+  // A 10 x 10 m part, 8 m high; ground vertices 0-3, roof 4-7, a 4 x 4 m hole in the ground
+  // at 8-11 (when `hole`).
+  auto city = [](const std::string& walls, bool hole) {
+    const std::string ground = hole ? "[[0,3,2,1],[8,9,10,11]]" : "[[0,3,2,1]]";
+    const std::string text =
+        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0.001,0.001],)"
+        R"("translate":[85000,446000,0]},"metadata":{"referenceSystem":)"
+        R"("https://www.opengis.net/def/crs/EPSG/0/7415"},"CityObjects":{"b":{)"
+        R"("type":"Building","geometry":[{"type":"MultiSurface","lod":"2","boundaries":[)" +
+        ground + ",[[4,5,6,7]]" + walls +
+        R"(],"semantics":{"surfaces":[{"type":"GroundSurface"},{"type":"RoofSurface"},)"
+        R"({"type":"WallSurface"}],"values":[0,1)" +
+        std::string(walls.empty()                ? ""
+                    : walls == R"(,[[0,1,5,4]])" ? ",2"
+                                                 : ",2,2,2,2") +
+        R"(]}}]}},"vertices":[[0,0,0],[10000,0,0],[10000,10000,0],[0,10000,0],)"
+        R"([0,0,8000],[10000,0,8000],[10000,10000,8000],[0,10000,8000],)"
+        R"([3000,3000,0],[3000,7000,0],[7000,7000,0],[7000,3000,0]]})";
+    return read_city_text(text, "walls.city.json", {});
+  };
+  const std::string all_walls = R"(,[[0,1,5,4]],[[1,2,6,5]],[[2,3,7,6]],[[3,0,4,7]])";
+  const City closed = city(all_walls, false);
+  ASSERT_EQ(closed.objects.size(), 1u);
+  EXPECT_TRUE(closed.objects[0].occludes);
+  ASSERT_EQ(closed.objects[0].occluders.size(), 1u);
+  EXPECT_NEAR(area(closed.objects[0].occluders[0].footprint), 100, 1e-6);
+  EXPECT_EQ(closed.report.grounds_off_walls, 0u);
+
+  for (const std::string& walls : {std::string(), std::string(R"(,[[0,1,5,4]])")}) {
+    const City open = city(walls, false);
+    ASSERT_EQ(open.objects.size(), 1u);
+    EXPECT_FALSE(open.objects[0].occludes) << walls;
+    EXPECT_TRUE(open.objects[0].occluders.empty()) << walls;
+    EXPECT_EQ(open.report.grounds_off_walls, 1u) << walls;
+    EXPECT_NEAR(open.objects[0].bbox.zmax - open.objects[0].bbox.zmin, 8, 1e-9);
+  }
+
+  const City courtyard = city(all_walls, true);
+  ASSERT_EQ(courtyard.objects.size(), 1u);
+  EXPECT_TRUE(courtyard.objects[0].occludes);
+  EXPECT_EQ(courtyard.report.grounds_off_walls, 0u);
+  double sum = 0;
+  for (const auto& o : courtyard.objects[0].occluders) {
+    sum += area(o.footprint);
+    EXPECT_EQ(o.footprint.holes.size(), 1u);
+  }
+  EXPECT_NEAR(sum, 100 - 16, 1e-6);
+}
+
 TEST(ReadCity, FilesInOneCrsAreReadTogether) {
   // The counterpart of mixed_crs_a + mixed_crs_b: the same file twice shares its CRS.
   const std::string a = (kTestData / "bad" / "mixed_crs_a.city.json").string();

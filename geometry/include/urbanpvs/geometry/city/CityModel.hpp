@@ -119,6 +119,9 @@ struct ReadReport {
   std::size_t footprints_from_walls = 0;
   /// Such parts whose walls give no closed footprint either: no occluder (conservative).
   std::size_t footprints_unknown = 0;
+  /// CityJSON/CityGML parts with a GroundSurface that walls do not stand round (walls missing
+  /// from the file): no occluder.
+  std::size_t grounds_off_walls = 0;
   /// CityJSON parts off the ground (on an OuterCeilingSurface, or floating): no occluder.
   std::size_t raised_parts = 0;
   /// GeoJSON buildings and parts whose occluder was cut from `height` down to the eaves.
