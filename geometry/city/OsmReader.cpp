@@ -225,8 +225,11 @@ void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& featur
   }
 
   using Index = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
-  Index index;
-  osmium::handler::NodeLocationsForWays<Index> locations(index);
+  // Two indexes: files saved from JOSM (and other editors) before upload number everything
+  // negatively, and with an index for positive ids alone every node of theirs went missing,
+  // every ring with it, and every building of the file vanished without a word.
+  Index index, negative_index;
+  osmium::handler::NodeLocationsForWays<Index, Index> locations(index, negative_index);
   locations.ignore_errors();  // a way leaving the extract: its rings are skipped, reported
   AreaFeatures collect(features, streets, report, path);
   auto assembled =

@@ -172,6 +172,35 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
   fs::remove(path);
 }
 
+// A file saved from JOSM before upload numbers every element negatively: the same city, its
+// ids with their sign. With an index of positive node ids alone, every building vanished (the
+// "no building found" of citygml-osm's Issue_70.osm and OSM2World's mp_two_outer_roof.osm).
+TEST(OsmReader, NegativeIdsAsEditorsSaveThem) {
+  const std::string positive_path = write_temp("positive.osm", sample_osm());
+  std::string text = sample_osm();
+  for (const std::string attribute : {" id=\"", " ref=\""})
+    for (std::size_t at = text.find(attribute); at != std::string::npos;
+         at = text.find(attribute, at + attribute.size() + 1))
+      text.insert(at + attribute.size(), "-");
+  const std::string negative_path = write_temp("negative.osm", text);
+  ReadOptions options;
+  options.default_height = 10;
+  const City positive = read_city({positive_path}, options);
+  const City negative = read_city({negative_path}, options);
+  ASSERT_EQ(negative.objects.size(), positive.objects.size());
+  for (const CityObject& o : positive.objects) {
+    const std::string id = o.source_id.substr(0, 1) + "-" + o.source_id.substr(1);
+    const CityObject* same = find(negative, id);
+    ASSERT_NE(same, nullptr) << id;
+    EXPECT_EQ(same->bbox.zmax, o.bbox.zmax) << id;
+    ASSERT_EQ(same->footprint.size(), o.footprint.size()) << id;
+    for (std::size_t k = 0; k < o.footprint.size(); ++k)
+      EXPECT_NEAR(area(same->footprint[k]), area(o.footprint[k]), 1e-9) << id;
+  }
+  fs::remove(positive_path);
+  fs::remove(negative_path);
+}
+
 // An Overpass API export is read as the same data sorted: every building, part, multipolygon
 // and street the same, the newest version of a node that comes twice, and a warning.
 TEST(OsmReader, UnsortedOverpassExportGivesTheCityOfTheSortedFile) {
