@@ -157,8 +157,6 @@ Json parse(std::string_view text, const std::string& name) {
   }
 }
 
-// A text file's city: CityGML, CityJSON (or a sequence of it), GeoJSON, or OpenStreetMap data
-// from the Overpass API in JSON, which the OSM reader's assembly takes (OverpassJson.cpp).
 // A value of a type that no check of the readers expected (an index where an object stands, a
 // string for a number) surfaces as nlohmann's exception from deep inside a reader. It is still
 // the input's fault: refused as its structure, naming the file, never an internal failure or an
@@ -173,6 +171,8 @@ auto refusing_type_errors(const std::string& name, Read&& read) {
   }
 }
 
+// A text file's city: CityGML, CityJSON (or a sequence of it), GeoJSON, or OpenStreetMap data
+// from the Overpass API in JSON, which the OSM reader's assembly takes (OverpassJson.cpp).
 Json parse_city(std::string_view text, const std::string& name, ReadReport& report) {
   Json doc = parse(text, name);
   if (detail::is_overpass_json(doc))

@@ -57,18 +57,6 @@ double wrap_pi(double a) {
   return a;
 }
 
-// Whether `p` lies within the bounding box of `ring` (borders included).
-bool within_bounds(const geometry::Ring& ring, Vec2 p) {
-  bool left = false, right = false, below = false, above = false;
-  for (const Vec2& v : ring) {
-    left |= v.x <= p.x;
-    right |= v.x >= p.x;
-    below |= v.y <= p.y;
-    above |= v.y >= p.y;
-  }
-  return left && right && below && above;
-}
-
 }  // namespace
 
 SampleHorizon::SampleHorizon()
@@ -330,8 +318,12 @@ void SampleHorizon::add(const geometry::Occluder& occluder) {
   // A hole's walls count only from a sample inside it (add_ring); a sample outside the hole's
   // bounds is not, and the hole's vertex directions (one atan2 each) need not be computed to
   // find that out. Courtyards are most holes, and most samples see them from outside.
-  for (const geometry::Ring& h : occluder.shape.holes)
-    if (within_bounds(h, {sample_.x, sample_.y})) add_ring(h, occluder, true);
+  for (const geometry::Ring& h : occluder.shape.holes) {
+    const geometry::Box2 b = geometry::bounds(h);
+    if (b.min.x <= sample_.x && sample_.x <= b.max.x && b.min.y <= sample_.y &&
+        sample_.y <= b.max.y)
+      add_ring(h, occluder, true);
+  }
 }
 
 // Closes sectors t0..t1 (unwrapped numbers) with the facing walls among edges k0..k1 of `ring`
