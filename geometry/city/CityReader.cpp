@@ -331,8 +331,19 @@ struct Reader {
   std::unique_ptr<LocalFrameMapping> mapping;
   std::vector<bool> relative;  // per object: heights relative to the ground (GeoJSON)
 
+  std::vector<std::pair<Json, std::string>> waiting;  // documents without a building, as yet
+  bool placing_without_buildings = false;
+
   void add(Json doc, const std::string& name) {
     refusing_type_errors(name, [&] { add_document(doc, name); });
+  }
+
+  // The documents that waited for a frame, in their order (the first one places the frame when
+  // no file has a building: the city is then refused as empty).
+  void add_waiting() {
+    placing_without_buildings = true;
+    for (auto& [doc, name] : waiting) add(std::move(doc), name);
+    waiting.clear();
   }
 
   void add_document(Json& doc, const std::string& name) {
@@ -343,6 +354,19 @@ struct Reader {
                                         : detail::scan_geojson(d, name, options);
     };
     detail::InputScan scan = scan_of(doc);
+    // OpenStreetMap is WGS84 lon/lat by definition, whatever it holds: a file without a
+    // building (streets only, or nothing in the area) is no file in another system.
+    const bool osm = doc.contains(detail::kStreetsMember);
+    if (osm) {
+      scan.kind = LocalFrame::Kind::Geographic;
+      scan.crs = "OGC:CRS84";
+      scan.note = name + ": OpenStreetMap, WGS84 lon/lat";
+    }
+    // The frame is placed by the buildings' coordinates: a file without any waits for one with.
+    if (!mapping && scan.bounds.empty() && !placing_without_buildings) {
+      waiting.emplace_back(std::move(doc), name);
+      return;
+    }
     // Every stage works in metres (ε, the cell edges, the eye band, the PVS file's frame): feet,
     // Mercator "metres" and degrees on another datum are transformed into WGS84 lon/lat first,
     // unless the user has said how to read GeoJSON's coordinates (--coordinates).
@@ -454,19 +478,21 @@ struct Reader {
 
 City read_city(const std::vector<std::string>& paths, const ReadOptions& options) {
   if (paths.empty()) throw InputError(InputProblem::EmptyCity, "(no file)", "", "no input file");
-  Reader reader{options, {}, {}, {}};
+  Reader reader{options, {}, {}, {}, {}, false};
   for (const std::string& p : paths)
     reader.add(detail::is_osm_file(p) ? detail::read_osm(p, reader.city.report)
                : detail::is_gis_vector_file(p)
                    ? detail::read_gis_vector(p, options, reader.city.report)
                    : parse_city(detail::read_input_file(p), p, reader.city.report),
                p);
+  reader.add_waiting();
   return reader.finish(paths.back());
 }
 
 City read_city_text(std::string_view text, const std::string& name, const ReadOptions& options) {
-  Reader reader{options, {}, {}, {}};
+  Reader reader{options, {}, {}, {}, {}, false};
   reader.add(parse_city(text, name, reader.city.report), name);
+  reader.add_waiting();
   return reader.finish(name);
 }
 

@@ -57,8 +57,10 @@ bool is_xml(std::string_view text);
 /// coordinate list that is no list of 2D or 3D points.
 Json citygml_to_cityjson(std::string_view text, const std::string& file);
 /// The member of a city object in citygml_to_cityjson's document that says why a polygon of it
-/// could not be read (a coordinate list that is no whole number of points): the CityJSON reader
-/// keeps such a building as an object that occludes nothing (--strict refuses it).
+/// could not be read (a coordinate list that is no whole number of points), or of a feature in
+/// read_osm's document why its area could not be built: the CityJSON and GeoJSON readers keep
+/// such a building, over the box of its positions, as an object that occludes nothing
+/// (--strict refuses it).
 inline constexpr const char* kUnreadableMember = "urbanpvs:unreadable";
 
 /// Replaces every GeometryInstance of a CityJSON document by its template's geometry, placed by

@@ -404,6 +404,7 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
   // would hide what is in front of it from the bake and from the validator alike.
   if (f.underground)
     return file + ": " + f.id + ": underground (location=underground or is_underground)";
+  if (!f.lost.empty()) return file + ": " + f.id + ": " + f.lost;
   const std::string none = "no " +
                            (options.height_field.empty() ? "" : options.height_field + ", ") +
                            "height, building:height, measuredHeight, building:levels or "
@@ -416,7 +417,6 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
            (f.refused_height.empty() ? ""
                                      : " (" + f.refused_height + " is no height: not positive)") +
            " (and no --default-height)";
-  if (!f.lost.empty()) return file + ": " + f.id + ": " + f.lost;
   // A roof on open sides (building=roof: a canopy, a petrol station's roof, a shelter): no wall
   // stands under it, so it gives no occluder (thesis 7.1), and in validation its prism is a
   // target only: sight lines pass under it.
@@ -577,6 +577,9 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
       return;
     }
     try {
+      if (feature.contains(kUnreadableMember))  // an OSM area that could not be built
+        throw InputError(InputProblem::InvalidGeometry, file, feature_id(feature, i),
+                         string_member(feature, kUnreadableMember));
       Feature f = read_feature(feature, i, file, mapping, heights, report);
       if (f.box.empty()) {  // rings without positions: nothing to place it by
         report.warnings.push_back(file + ": " + f.id + ": no coordinates: skipped");
@@ -589,6 +592,7 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
       Feature f;
       f.id = feature_id(feature, i);
       f.payload = payload_of(properties_of(feature), options.payload_key);
+      heights.read(properties_of(feature), f);  // the geometry is lost, not what the tags say
       const Box2 in = raw_box(feature, file, f.id);
       if (in.empty()) {
         report.warnings.push_back(std::string(e.what()) + " (no coordinates: skipped)");

@@ -20,6 +20,7 @@
 #include <osmium/index/map/flex_mem.hpp>
 #include <osmium/io/any_input.hpp>
 #include <osmium/object_pointer_collection.hpp>
+#include <osmium/osm/box.hpp>
 #include <osmium/osm/object_comparisons.hpp>
 #include <osmium/relations/manager_util.hpp>
 #include <osmium/tags/tags_filter.hpp>
@@ -85,10 +86,115 @@ bool polygon_json(const osmium::Area& a, const osmium::OuterRing& outer, Json& o
   return ok;
 }
 
+// A building whose area osmium's assembler could not build (rings that touch at a point that is
+// no shared node, bow-ties, spikes, ways that leave the extract, ...). It is kept, never
+// dropped: a building missing from the city is missing from every PVS (a pop-in).
+struct UnbuiltBuilding {
+  std::string id;        // element_id's form
+  Json properties;       // the element's tags
+  Json lines;            // each of its ways as the lon/lat positions of its nodes in the extract
+  std::string why_lost;  // empty: one closed way, every node there, handed to the ring repair
+};
+
+// Keeps `element` when it is a building whose nodes in the extract span an area (one node, or
+// nodes on a line, are what an extract's edge left of a building outside it); true when kept.
+bool keep_unbuilt(std::vector<UnbuiltBuilding>& unbuilt, const osmium::OSMObject& element,
+                  const std::vector<const osmium::Way*>& ways) {
+  if (!is_building(element.tags())) return false;  // a street area that is not built: no street
+  UnbuiltBuilding b;
+  b.id = (element.type() == osmium::item_type::way ? "w" : "r") + std::to_string(element.id());
+  b.properties = Json::object();
+  for (const osmium::Tag& t : element.tags())
+    if (std::strcmp(t.key(), "type") != 0) b.properties[t.key()] = t.value();
+  b.lines = Json::array();
+  bool every_node = true;
+  osmium::Box box;
+  for (const osmium::Way* w : ways) {
+    if (w == nullptr) {
+      every_node = false;
+      continue;
+    }
+    Json line = Json::array();
+    for (const osmium::NodeRef& n : w->nodes())
+      if (n.location().valid()) {
+        line.push_back(Json::array({n.location().lon(), n.location().lat()}));
+        box.extend(n.location());
+      } else {
+        every_node = false;
+      }
+    if (!line.empty()) b.lines.push_back(std::move(line));
+  }
+  if (!box.valid() || box.bottom_left().x() == box.top_right().x() ||
+      box.bottom_left().y() == box.top_right().y())
+    return false;
+  // A closed way with every node may be a bow-tie or carry a spike: the GeoJSON reader's ring
+  // repair (fill by winding) mends what it can. A ring with nodes missing would join the rest
+  // by chords that may cross open ground, an open way is no ring at all, and a multipolygon's
+  // members say nothing of which side is inside once they do not close up: none of these may
+  // occlude (thesis 7.1).
+  const bool relation = element.type() == osmium::item_type::relation;
+  if (relation)
+    b.why_lost = every_node ? "its member ways do not form rings" : "members outside the extract";
+  else if (!every_node)
+    b.why_lost = "nodes outside the extract: its ring is incomplete";
+  else if (b.lines[0].front() != b.lines[0].back())
+    b.why_lost = "an open way: no ring";
+  unbuilt.push_back(std::move(b));
+  return true;
+}
+
+// osmium's assembler, constructed per area by the MultipolygonManager, and what it could not
+// build kept in config_type::unbuilt (create_empty_areas is off: a failure gives no area).
+class KeepingAssembler {
+ public:
+  struct config_type : osmium::area::AssemblerConfig {
+    std::vector<UnbuiltBuilding>* unbuilt = nullptr;
+  };
+  explicit KeepingAssembler(const config_type& config)
+      : osmium_(config), unbuilt_(*config.unbuilt) {}
+
+  bool operator()(const osmium::Way& way, osmium::memory::Buffer& out) {
+    if (osmium_(way, out)) return true;
+    keep_unbuilt(unbuilt_, way, {&way});
+    return false;
+  }
+  bool operator()(const osmium::Relation& relation, const std::vector<const osmium::Way*>& ways,
+                  osmium::memory::Buffer& out) {
+    if (osmium_(relation, ways, out)) return true;
+    keep_unbuilt(unbuilt_, relation, ways);
+    return false;
+  }
+  const osmium::area::area_stats& stats() const noexcept { return osmium_.stats(); }
+
+ private:
+  osmium::area::Assembler osmium_;
+  std::vector<UnbuiltBuilding>& unbuilt_;
+};
+
+// Each unbuilt building as a GeoJSON feature: its ways as the rings of one polygon (a closed
+// way) or of one polygon each, and, where it may not occlude, kUnreadableMember saying why.
+void add_unbuilt(std::vector<UnbuiltBuilding>& unbuilt, Json& features) {
+  for (UnbuiltBuilding& b : unbuilt) {
+    Json geometry = Json::object();
+    geometry["type"] = "MultiPolygon";
+    geometry["coordinates"] = Json::array();
+    for (Json& line : b.lines) geometry["coordinates"].push_back(Json::array({std::move(line)}));
+    Json feature = Json::object();
+    feature["type"] = "Feature";
+    feature["id"] = b.id;
+    feature["geometry"] = std::move(geometry);
+    feature["properties"] = std::move(b.properties);
+    if (!b.why_lost.empty()) feature[kUnreadableMember] = b.why_lost;
+    features.push_back(std::move(feature));
+  }
+  unbuilt.clear();
+}
+
 class AreaFeatures : public osmium::handler::Handler {
  public:
-  AreaFeatures(Json& features, Json& streets, ReadReport& report, const std::string& file)
-      : features_(features), streets_(streets), report_(report), file_(file) {}
+  AreaFeatures(Json& features, Json& streets, std::vector<UnbuiltBuilding>& unbuilt,
+               ReadReport& report, const std::string& file)
+      : features_(features), streets_(streets), unbuilt_(unbuilt), report_(report), file_(file) {}
 
   void area(const osmium::Area& a) {
     const bool building = is_building(a.tags());
@@ -106,8 +212,7 @@ class AreaFeatures : public osmium::handler::Handler {
       }
       polygons.push_back(std::move(polygon));
     }
-    // An area the assembler could not build has no rings; its problems are reported already.
-    if (polygons.empty()) return;
+    if (polygons.empty()) return;  // every ring left the extract (reported above)
     if (!a.from_way()) ++report_.osm_multipolygons;
     Json properties = Json::object();
     for (const osmium::Tag& t : a.tags()) properties[t.key()] = t.value();
@@ -123,6 +228,12 @@ class AreaFeatures : public osmium::handler::Handler {
   }
 
   void way(const osmium::Way& w) {
+    if (passed_over(w))
+      report_.warnings.push_back(file_ + ": w" + std::to_string(w.id()) +
+                                 ": building way that is no closed ring in the extract; " +
+                                 (keep_unbuilt(unbuilt_, w, {&w})
+                                      ? "kept over its nodes there"
+                                      : "skipped (its nodes there span no area)"));
     if (!is_street_line(w)) return;
     Json line;
     if (!ring_json(w.nodes(), line)) return;  // leaves the extract: the street is cut there
@@ -146,8 +257,18 @@ class AreaFeatures : public osmium::handler::Handler {
     }
   }
 
+  // A building way that the multipolygon manager passes over without a word: too short, open,
+  // or its first or last node outside the extract.
+  static bool passed_over(const osmium::Way& w) {
+    if (!is_building(w.tags())) return false;
+    const osmium::WayNodeList& n = w.nodes();
+    return n.size() <= 3 || !n.front().location().valid() || !n.back().location().valid() ||
+           n.front().location() != n.back().location();
+  }
+
   Json& features_;
   Json& streets_;
+  std::vector<UnbuiltBuilding>& unbuilt_;
   ReadReport& report_;
   const std::string& file_;
 };
@@ -203,8 +324,11 @@ struct SortedObjects {
 void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& features, Json& streets,
               ReadReport& report, std::ostringstream& problems, const std::string& path) {
   osmium::area::ProblemReporterStream reporter(problems);
-  osmium::area::Assembler::config_type config;
+  std::vector<UnbuiltBuilding> unbuilt;
+  KeepingAssembler::config_type config;
   config.problem_reporter = &reporter;
+  config.create_empty_areas = false;
+  config.unbuilt = &unbuilt;
   // Buildings and their parts ("building=no" is no building), and street areas.
   osmium::TagsFilter wanted(false);
   wanted.add_rule(false, "building", "no");
@@ -214,7 +338,7 @@ void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& featur
   wanted.add_rule(true, "area:highway");
   wanted.add_rule(true, "highway", "pedestrian");
   wanted.add_rule(true, "place", "square");
-  osmium::area::MultipolygonManager<osmium::area::Assembler> areas(config, wanted);
+  osmium::area::MultipolygonManager<KeepingAssembler> areas(config, wanted);
   if (sorted == nullptr) {
     osmium::relations::read_relations(*input, areas);  // pass 1: which ways the relations need
   } else {
@@ -231,7 +355,7 @@ void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& featur
   Index index, negative_index;
   osmium::handler::NodeLocationsForWays<Index, Index> locations(index, negative_index);
   locations.ignore_errors();  // a way leaving the extract: its rings are skipped, reported
-  AreaFeatures collect(features, streets, report, path);
+  AreaFeatures collect(features, streets, unbuilt, report, path);
   auto assembled =
       areas.handler([&](osmium::memory::Buffer&& buffer) { osmium::apply(buffer, collect); });
   if (sorted == nullptr) {
@@ -246,9 +370,15 @@ void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& featur
     osmium::apply(sorted->objects.begin(), sorted->objects.end(), locations, collect, assembled);
   }
   areas.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& r) {
+    std::vector<const osmium::Way*> ways;
+    for (const osmium::RelationMember& m : r->members())
+      if (m.type() == osmium::item_type::way) ways.push_back(areas.get_member_way(m.ref()));
+    const bool kept = keep_unbuilt(unbuilt, *r, ways);
     report.warnings.push_back(path + ": r" + std::to_string(r->id()) +
-                              ": multipolygon with members outside the extract; skipped");
+                              ": multipolygon with members outside the extract; " +
+                              (kept ? "kept over its ways there" : "skipped"));
   });
+  add_unbuilt(unbuilt, features);
 }
 
 Json osm_document(Json features, Json streets) {

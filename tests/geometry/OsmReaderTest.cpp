@@ -22,6 +22,7 @@
 #include "urbanpvs/geometry/cells/ViewCells.hpp"
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/LocalFrameMapping.hpp"
 
 namespace {
 
@@ -149,11 +150,13 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
   options.default_height = 10;
   const City city = read_city({path}, options);
   ASSERT_EQ(city.frame.kind, LocalFrame::Kind::Geographic);
-  // w1, w2, r20 and w4 (with its part w5); building=no and the broken relations are not there.
+  // w1, w2, r20 and w4 (with its part w5), and r21, which cannot be assembled, kept; building=no
+  // and r22, of which nothing lies in the file, are not there.
   std::vector<std::string> ids;
   for (const CityObject& o : city.objects) ids.push_back(o.source_id);
   std::sort(ids.begin(), ids.end());
-  EXPECT_EQ(ids, (std::vector<std::string>{"r20", "w1", "w2", "w4"}));
+  EXPECT_EQ(ids, (std::vector<std::string>{"r20", "r21", "w1", "w2", "w4"}));
+  EXPECT_FALSE(find(city, "r21")->occludes);
 
   EXPECT_NEAR(find(city, "w1")->bbox.zmax, 12, 1e-9);
   EXPECT_NEAR(find(city, "w2")->bbox.zmax, 12, 1e-9);  // 4 levels x 3 m
@@ -170,6 +173,141 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
   EXPECT_TRUE(mentions(city.report.warnings, "r21", "")) << "unclosed ring of r21";
   EXPECT_TRUE(mentions(city.report.warnings, "r22", "outside the extract"));
   fs::remove(path);
+}
+
+// A building osmium's area assembler cannot build is still a building: a closed way is mended
+// by the ring repair and occludes; what cannot be mended (a multipolygon whose rings touch at a
+// point that is no node, members or nodes outside the extract, an open way) is kept as an object
+// that occludes nothing over the box of its nodes in the file, as tall as its tags say or, without
+// them, as a building may be. Nodes that span no area (a building's corner) are no building.
+TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
+  std::string s;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 12; ++j)
+      if (!(i == 9 && j == 11)) s += node(i, j);  // node 1911 lies outside the extract
+  // A bow-tie: its two crossing edges give two triangles, (0,0)-(1,1)-(0,2) and (2,0)-(1,1)-(2,2).
+  s += way(40, {{0, 0}, {2, 2}, {2, 0}, {0, 2}, {0, 0}},
+           tag("building", "yes") + tag("height", "8"));
+  // A square with a spike out to (5,0) and back.
+  s += way(41, {{3, 0}, {4, 0}, {5, 0}, {4, 0}, {4, 1}, {3, 1}, {3, 0}},
+           tag("building", "yes") + tag("height", "8"));
+  // Two outer rings, the second touching the first's edge at (6,4), which is no node of it.
+  s += way(42, {{4, 3}, {6, 3}, {6, 5}, {4, 5}, {4, 3}}, "");
+  s += way(43, {{6, 4}, {8, 3}, {8, 5}, {6, 4}}, "");
+  // An open building way.
+  s += way(44, {{0, 8}, {2, 8}, {2, 10}}, tag("building", "yes"));
+  // A closed way whose first and last node lie outside the extract: the others span its box.
+  s += way(45, {{9, 11}, {9, 9}, {7, 9}, {7, 11}, {9, 11}}, tag("building", "yes"));
+  // A building way of which only two nodes lie in the extract, on one line of the lattice.
+  s += way(47, {{9, 11}, {9, 7}, {9, 6}, {9, 11}}, tag("building", "yes"));
+  // A multipolygon with one member in the file and one outside it.
+  s += way(46, {{4, 8}, {6, 8}, {6, 10}, {4, 10}, {4, 8}}, "");
+  const std::string mp = tag("type", "multipolygon") + tag("building", "yes");
+  s += relation(50, member(42, "outer") + member(43, "outer"), mp + tag("height", "15"));
+  s += relation(51, member(46, "outer") + member(998, "outer"), mp);
+  const std::string path = write_temp(
+      "unbuilt.osm", "<?xml version=\"1.0\"?>\n<osm version=\"0.6\">\n" + s + "</osm>\n");
+  ReadOptions options;
+  options.max_height = 90;
+  const City city = read_city({path}, options);
+  std::vector<std::string> ids;
+  for (const CityObject& o : city.objects) ids.push_back(o.source_id);
+  std::sort(ids.begin(), ids.end());
+  ASSERT_EQ(ids, (std::vector<std::string>{"r50", "r51", "w40", "w41", "w44", "w45"}));
+  EXPECT_TRUE(mentions(city.report.warnings, "w47", "span no area"));
+
+  // The lattice's cells in metres, from the repaired squares' own sizes.
+  const CityObject* spiked = find(city, "w41");
+  ASSERT_TRUE(spiked->occludes);
+  ASSERT_EQ(spiked->footprint.size(), 1u);
+  const Box2 cell = bounds(spiked->footprint[0]);  // the spike is gone: one lattice cell
+  const double cell_area = cell.area();
+  EXPECT_NEAR(area(spiked->footprint[0]), cell_area, 1e-4 * cell_area);
+  EXPECT_NEAR(spiked->bbox.zmax, 8, 1e-9);
+  const CityObject* bowtie = find(city, "w40");
+  ASSERT_TRUE(bowtie->occludes);
+  double bowtie_area = 0;
+  for (const Polygon& p : bowtie->footprint) bowtie_area += area(p);
+  EXPECT_NEAR(bowtie_area, 2 * cell_area, 0.01 * cell_area);  // two triangles of 1 cell each
+
+  // The rest occlude nothing, stand as tall as a building may be, and cover their nodes.
+  const auto nodes_box = [&](int i0, int j0, int i1, int j1) {
+    Box2 b;
+    for (const CityObject& o : city.objects)  // w41's lattice cell (3..4, 0..1), shifted
+      if (o.source_id == "w41") b = bounds(o.footprint[0]);
+    const Vec2 size = b.max - b.min;
+    const Vec2 at = b.min - Vec2{3 * size.x, 0};  // lattice point (0, 0)
+    Box2 out;
+    out.extend(at + Vec2{i0 * size.x, j0 * size.y});
+    out.extend(at + Vec2{i1 * size.x, j1 * size.y});
+    return out;
+  };
+  struct Expect {
+    const char* id;
+    Box2 box;
+    double height;
+    const char* why;
+  };
+  for (const Expect& e : {Expect{"r50", nodes_box(4, 3, 8, 5), 15, "do not form rings"},
+                          Expect{"r51", nodes_box(4, 8, 6, 10), 90, "members outside the extract"},
+                          Expect{"w44", nodes_box(0, 8, 2, 10), 90, "an open way"},
+                          Expect{"w45", nodes_box(7, 9, 9, 11), 90, "outside the extract"}}) {
+    SCOPED_TRACE(e.id);
+    const CityObject* o = find(city, e.id);
+    EXPECT_FALSE(o->occludes);
+    EXPECT_TRUE(o->occluders.empty());
+    EXPECT_NEAR(o->bbox.zmax - o->ground_z, e.height, 1e-9);
+    EXPECT_NEAR(o->bbox.xy.min.x, e.box.min.x, 0.05);
+    EXPECT_NEAR(o->bbox.xy.max.x, e.box.max.x, 0.05);
+    EXPECT_NEAR(o->bbox.xy.min.y, e.box.min.y, 0.05);
+    EXPECT_NEAR(o->bbox.xy.max.y, e.box.max.y, 0.05);
+    EXPECT_TRUE(mentions(city.report.non_occluding, std::string(e.id) + ": ", e.why));
+  }
+  options.strict = true;
+  try {
+    read_city({path}, options);
+    FAIL() << "--strict accepted buildings that cannot be built";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::InvalidGeometry);
+    EXPECT_EQ(e.file(), path);
+  }
+  fs::remove(path);
+}
+
+// Two OSM files, one with streets and no building: OpenStreetMap is WGS84 whatever a file holds,
+// so the pair is read in either order (it was refused: "OGC:CRS84 differs from ...'s (none)").
+TEST(OsmReader, AFileWithoutBuildingsJoinsTheOthers) {
+  std::string nodes;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 12; ++j) nodes += node(i, j);
+  const auto file = [&](const std::string& name, const std::string& ways) {
+    return write_temp(
+        name, "<?xml version=\"1.0\"?>\n<osm version=\"0.6\">\n" + nodes + ways + "</osm>\n");
+  };
+  const std::string streets =
+      file("streets_only.osm", way(60, {{0, 8}, {9, 8}}, tag("highway", "residential")));
+  const std::string buildings =
+      file("buildings_only.osm", way(61, {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}},
+                                     tag("building", "yes") + tag("height", "9")));
+  for (const auto& paths : {std::vector{streets, buildings}, std::vector{buildings, streets}}) {
+    SCOPED_TRACE(paths.front());
+    const City city = read_city(paths);
+    ASSERT_EQ(city.objects.size(), 1u);
+    EXPECT_EQ(city.objects[0].source_id, "w61");
+    EXPECT_EQ(city.frame.kind, LocalFrame::Kind::Geographic);
+    ASSERT_EQ(city.streets.lines.size(), 1u);
+    // The street runs 8 lattice rows north of the building, in the same frame.
+    EXPECT_GT(city.streets.lines[0].points.front().y, city.objects[0].bbox.xy.max.y + 50);
+    EXPECT_LT(city.streets.lines[0].points.front().y, city.objects[0].bbox.xy.max.y + 100);
+  }
+  try {
+    read_city({streets});
+    FAIL() << "a city without buildings accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), InputProblem::EmptyCity);
+  }
+  fs::remove(streets);
+  fs::remove(buildings);
 }
 
 // A file saved from JOSM before upload numbers every element negatively: the same city, its
@@ -491,11 +629,28 @@ TEST(OsmReader, HelsinkiPbfGivesTheBuildingsOfItsGeoJsonExport) {
   options.default_height = 10;
   const City from_osm = read_city({pbf}, options);
   const City from_geojson = read_city({geojson}, options);
-  ASSERT_EQ(from_osm.objects.size(), from_geojson.objects.size());
-  // The same local frame, so footprints compare directly in metres.
+  // The export left out the buildings that the extract's edge cuts; the PBF keeps them, as
+  // objects that occlude nothing over their nodes in the extract.
+  std::set<std::string> exported;
+  for (const CityObject& g : from_geojson.objects) exported.insert(osm_style(g.source_id));
+  std::size_t cut = 0;
+  for (const CityObject& o : from_osm.objects) {
+    if (exported.count(o.source_id)) continue;
+    ++cut;
+    EXPECT_FALSE(o.occludes) << o.source_id;
+    EXPECT_TRUE(mentions(from_osm.report.non_occluding, o.source_id + ": ", "outside the extract"))
+        << o.source_id;
+  }
+  EXPECT_EQ(from_osm.objects.size(), from_geojson.objects.size() + cut);
+  EXPECT_GT(cut, 40u);
+  // The cut buildings move the frame's origin by metres: a shift between the two frames (their
+  // tangent planes turn by 1e-6 rad, 1 mm over the extract).
   ASSERT_EQ(from_osm.frame.kind, from_geojson.frame.kind);
-  ASSERT_NEAR(from_osm.frame.origin_lon, from_geojson.frame.origin_lon, 1e-12);
-  ASSERT_NEAR(from_osm.frame.origin_lat, from_geojson.frame.origin_lat, 1e-12);
+  const Vec3 origin =
+      LocalFrameMapping(from_osm.frame)
+          .to_local(from_geojson.frame.origin_lon, from_geojson.frame.origin_lat, 0);
+  const Vec2 shift{origin[0], origin[1]};
+  ASSERT_LT(std::hypot(shift.x, shift.y), 20.0);
   std::map<std::string, const CityObject*> by_id;
   for (const CityObject& o : from_osm.objects) by_id[o.source_id] = &o;
   std::size_t compared_vertices = 0;
@@ -512,7 +667,7 @@ TEST(OsmReader, HelsinkiPbfGivesTheBuildingsOfItsGeoJsonExport) {
       ASSERT_EQ(o.footprint[p].outer.size(), g.footprint[p].outer.size()) << g.source_id;
       ASSERT_EQ(o.footprint[p].holes.size(), g.footprint[p].holes.size()) << g.source_id;
       for (std::size_t k = 0; k < g.footprint[p].outer.size(); ++k, ++compared_vertices) {
-        const Vec2 d = o.footprint[p].outer[k] - g.footprint[p].outer[k];
+        const Vec2 d = o.footprint[p].outer[k] - (g.footprint[p].outer[k] + shift);
         EXPECT_LE(std::hypot(d.x, d.y), 0.01) << g.source_id << " vertex " << k;
       }
     }
