@@ -92,53 +92,68 @@ bool polygon_json(const osmium::Area& a, const osmium::OuterRing& outer, Json& o
 struct UnbuiltBuilding {
   std::string id;        // element_id's form
   Json properties;       // the element's tags
-  Json lines;            // each of its ways as the lon/lat positions of its nodes in the extract
-  std::string why_lost;  // empty: one closed way, every node there, handed to the ring repair
+  Json polygons;         // GeoJSON MultiPolygon coordinates: lon/lat of its nodes in the extract
+  std::string why_lost;  // empty: rings with every node, handed to the ring repair
 };
 
 // Keeps `element` when it is a building whose nodes in the extract span an area (one node, or
 // nodes on a line, are what an extract's edge left of a building outside it); true when kept.
+// `inner[i]`: ways[i] has the role "inner" (a multipolygon's; empty for a way).
 bool keep_unbuilt(std::vector<UnbuiltBuilding>& unbuilt, const osmium::OSMObject& element,
-                  const std::vector<const osmium::Way*>& ways) {
+                  const std::vector<const osmium::Way*>& ways, const std::vector<bool>& inner) {
   if (!is_building(element.tags())) return false;  // a street area that is not built: no street
   UnbuiltBuilding b;
   b.id = (element.type() == osmium::item_type::way ? "w" : "r") + std::to_string(element.id());
   b.properties = Json::object();
   for (const osmium::Tag& t : element.tags())
     if (std::strcmp(t.key(), "type") != 0) b.properties[t.key()] = t.value();
-  b.lines = Json::array();
-  bool every_node = true;
+  bool every_node = true, every_way_closed = true;
   osmium::Box box;
-  for (const osmium::Way* w : ways) {
-    if (w == nullptr) {
+  Json lines = Json::array(), outer_rings = Json::array(), inner_rings = Json::array();
+  for (std::size_t i = 0; i < ways.size(); ++i) {
+    if (ways[i] == nullptr) {
       every_node = false;
       continue;
     }
     Json line = Json::array();
-    for (const osmium::NodeRef& n : w->nodes())
+    for (const osmium::NodeRef& n : ways[i]->nodes())
       if (n.location().valid()) {
         line.push_back(Json::array({n.location().lon(), n.location().lat()}));
         box.extend(n.location());
       } else {
         every_node = false;
       }
-    if (!line.empty()) b.lines.push_back(std::move(line));
+    if (line.empty()) continue;
+    every_way_closed = every_way_closed && line.size() >= 4 && line.front() == line.back();
+    (i < inner.size() && inner[i] ? inner_rings : outer_rings).push_back(line);
+    lines.push_back(std::move(line));
   }
   if (!box.valid() || box.bottom_left().x() == box.top_right().x() ||
       box.bottom_left().y() == box.top_right().y())
     return false;
-  // A closed way with every node may be a bow-tie or carry a spike: the GeoJSON reader's ring
-  // repair (fill by winding) mends what it can. A ring with nodes missing would join the rest
-  // by chords that may cross open ground, an open way is no ring at all, and a multipolygon's
-  // members say nothing of which side is inside once they do not close up: none of these may
-  // occlude (thesis 7.1).
-  const bool relation = element.type() == osmium::item_type::relation;
-  if (relation)
-    b.why_lost = every_node ? "its member ways do not form rings" : "members outside the extract";
-  else if (!every_node)
-    b.why_lost = "nodes outside the extract: its ring is incomplete";
-  else if (b.lines[0].front() != b.lines[0].back())
-    b.why_lost = "an open way: no ring";
+  // Rings with every node may cross themselves or each other, carry spikes or touch at a point
+  // that is no node: the GeoJSON reader's ring repair (fill by winding) mends what it can, each
+  // outer ring less every inner one being what a multipolygon means. A ring with nodes missing
+  // would join the rest by chords that may cross open ground, an open way is no ring at all,
+  // and a multipolygon's ways say nothing of which side is inside once they do not close up:
+  // none of these may occlude (thesis 7.1).
+  if (!every_node)
+    b.why_lost = element.type() == osmium::item_type::relation
+                     ? "members outside the extract"
+                     : "nodes outside the extract: its ring is incomplete";
+  else if (!every_way_closed || outer_rings.empty())
+    b.why_lost = element.type() == osmium::item_type::relation ? "its member ways do not form rings"
+                                                               : "an open way: no ring";
+  b.polygons = Json::array();
+  if (b.why_lost.empty()) {
+    for (Json& outer : outer_rings) {
+      Json polygon = Json::array({std::move(outer)});
+      for (const Json& hole : inner_rings) polygon.push_back(hole);
+      b.polygons.push_back(std::move(polygon));
+    }
+  } else {  // only its box counts
+    for (Json& line : lines) b.polygons.push_back(Json::array({std::move(line)}));
+  }
   unbuilt.push_back(std::move(b));
   return true;
 }
@@ -155,13 +170,16 @@ class KeepingAssembler {
 
   bool operator()(const osmium::Way& way, osmium::memory::Buffer& out) {
     if (osmium_(way, out)) return true;
-    keep_unbuilt(unbuilt_, way, {&way});
+    keep_unbuilt(unbuilt_, way, {&way}, {});
     return false;
   }
   bool operator()(const osmium::Relation& relation, const std::vector<const osmium::Way*>& ways,
                   osmium::memory::Buffer& out) {
     if (osmium_(relation, ways, out)) return true;
-    keep_unbuilt(unbuilt_, relation, ways);
+    std::vector<bool> inner;  // `ways` are the members the manager kept (a non-zero ref)
+    for (const osmium::RelationMember& m : relation.members())
+      if (m.ref() != 0) inner.push_back(std::strcmp(m.role(), "inner") == 0);
+    keep_unbuilt(unbuilt_, relation, ways, inner);
     return false;
   }
   const osmium::area::area_stats& stats() const noexcept { return osmium_.stats(); }
@@ -171,14 +189,13 @@ class KeepingAssembler {
   std::vector<UnbuiltBuilding>& unbuilt_;
 };
 
-// Each unbuilt building as a GeoJSON feature: its ways as the rings of one polygon (a closed
-// way) or of one polygon each, and, where it may not occlude, kUnreadableMember saying why.
+// Each unbuilt building as a GeoJSON feature, and, where it may not occlude, kUnreadableMember
+// saying why.
 void add_unbuilt(std::vector<UnbuiltBuilding>& unbuilt, Json& features) {
   for (UnbuiltBuilding& b : unbuilt) {
     Json geometry = Json::object();
     geometry["type"] = "MultiPolygon";
-    geometry["coordinates"] = Json::array();
-    for (Json& line : b.lines) geometry["coordinates"].push_back(Json::array({std::move(line)}));
+    geometry["coordinates"] = std::move(b.polygons);
     Json feature = Json::object();
     feature["type"] = "Feature";
     feature["id"] = b.id;
@@ -231,7 +248,7 @@ class AreaFeatures : public osmium::handler::Handler {
     if (passed_over(w))
       report_.warnings.push_back(file_ + ": w" + std::to_string(w.id()) +
                                  ": building way that is no closed ring in the extract; " +
-                                 (keep_unbuilt(unbuilt_, w, {&w})
+                                 (keep_unbuilt(unbuilt_, w, {&w}, {})
                                       ? "kept over its nodes there"
                                       : "skipped (its nodes there span no area)"));
     if (!is_street_line(w)) return;
@@ -371,9 +388,13 @@ void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& featur
   }
   areas.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& r) {
     std::vector<const osmium::Way*> ways;
+    std::vector<bool> inner;
     for (const osmium::RelationMember& m : r->members())
-      if (m.type() == osmium::item_type::way) ways.push_back(areas.get_member_way(m.ref()));
-    const bool kept = keep_unbuilt(unbuilt, *r, ways);
+      if (m.type() == osmium::item_type::way) {
+        ways.push_back(areas.get_member_way(m.ref()));
+        inner.push_back(std::strcmp(m.role(), "inner") == 0);
+      }
+    const bool kept = keep_unbuilt(unbuilt, *r, ways, inner);
     report.warnings.push_back(path + ": r" + std::to_string(r->id()) +
                               ": multipolygon with members outside the extract; " +
                               (kept ? "kept over its ways there" : "skipped"));

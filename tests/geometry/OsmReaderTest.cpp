@@ -175,9 +175,10 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
   fs::remove(path);
 }
 
-// A building osmium's area assembler cannot build is still a building: a closed way is mended
-// by the ring repair and occludes; what cannot be mended (a multipolygon whose rings touch at a
-// point that is no node, members or nodes outside the extract, an open way) is kept as an object
+// A building osmium's area assembler cannot build is still a building: closed rings (a way's, or
+// a multipolygon's whose rings touch at a point that is no node) are mended by the ring repair
+// and occlude; what cannot be mended (members or nodes outside the extract, an open way, a
+// multipolygon whose ways do not close up) is kept as an object
 // that occludes nothing over the box of its nodes in the file, as tall as its tags say or, without
 // them, as a building may be. Nodes that span no area (a building's corner) are no building.
 TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
@@ -200,11 +201,15 @@ TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
   s += way(45, {{9, 11}, {9, 9}, {7, 9}, {7, 11}, {9, 11}}, tag("building", "yes"));
   // A building way of which only two nodes lie in the extract, on one line of the lattice.
   s += way(47, {{9, 11}, {9, 7}, {9, 6}, {9, 11}}, tag("building", "yes"));
+  // A multipolygon whose two ways leave a gap: no ring.
+  s += way(48, {{0, 3}, {2, 3}, {2, 5}}, "");
+  s += way(49, {{2, 5}, {0, 5}, {0, 4}}, "");
   // A multipolygon with one member in the file and one outside it.
   s += way(46, {{4, 8}, {6, 8}, {6, 10}, {4, 10}, {4, 8}}, "");
   const std::string mp = tag("type", "multipolygon") + tag("building", "yes");
   s += relation(50, member(42, "outer") + member(43, "outer"), mp + tag("height", "15"));
   s += relation(51, member(46, "outer") + member(998, "outer"), mp);
+  s += relation(52, member(48, "outer") + member(49, "outer"), mp);
   const std::string path = write_temp(
       "unbuilt.osm", "<?xml version=\"1.0\"?>\n<osm version=\"0.6\">\n" + s + "</osm>\n");
   ReadOptions options;
@@ -213,7 +218,7 @@ TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
   std::vector<std::string> ids;
   for (const CityObject& o : city.objects) ids.push_back(o.source_id);
   std::sort(ids.begin(), ids.end());
-  ASSERT_EQ(ids, (std::vector<std::string>{"r50", "r51", "w40", "w41", "w44", "w45"}));
+  ASSERT_EQ(ids, (std::vector<std::string>{"r50", "r51", "r52", "w40", "w41", "w44", "w45"}));
   EXPECT_TRUE(mentions(city.report.warnings, "w47", "span no area"));
 
   // The lattice's cells in metres, from the repaired squares' own sizes.
@@ -229,6 +234,13 @@ TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
   double bowtie_area = 0;
   for (const Polygon& p : bowtie->footprint) bowtie_area += area(p);
   EXPECT_NEAR(bowtie_area, 2 * cell_area, 0.01 * cell_area);  // two triangles of 1 cell each
+  // The touching rings: a square of 2 x 2 cells and a triangle of 2 cells, 15 m tall.
+  const CityObject* touching = find(city, "r50");
+  ASSERT_TRUE(touching->occludes);
+  double touching_area = 0;
+  for (const Polygon& p : touching->footprint) touching_area += area(p);
+  EXPECT_NEAR(touching_area, 6 * cell_area, 0.01 * cell_area);
+  EXPECT_NEAR(touching->bbox.zmax, 15, 1e-9);
 
   // The rest occlude nothing, stand as tall as a building may be, and cover their nodes.
   const auto nodes_box = [&](int i0, int j0, int i1, int j1) {
@@ -248,7 +260,7 @@ TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
     double height;
     const char* why;
   };
-  for (const Expect& e : {Expect{"r50", nodes_box(4, 3, 8, 5), 15, "do not form rings"},
+  for (const Expect& e : {Expect{"r52", nodes_box(0, 3, 2, 5), 90, "do not form rings"},
                           Expect{"r51", nodes_box(4, 8, 6, 10), 90, "members outside the extract"},
                           Expect{"w44", nodes_box(0, 8, 2, 10), 90, "an open way"},
                           Expect{"w45", nodes_box(7, 9, 9, 11), 90, "outside the extract"}}) {
