@@ -96,6 +96,12 @@ struct UnbuiltBuilding {
   std::string why_lost;  // empty: rings with every node, handed to the ring repair
 };
 
+osmium::Box ring_box(const Json& ring) {
+  osmium::Box box;
+  for (const Json& p : ring) box.extend(osmium::Location(p[0].get<double>(), p[1].get<double>()));
+  return box;
+}
+
 // Keeps `element` when it is a building whose nodes in the extract span an area (one node, or
 // nodes on a line, are what an extract's edge left of a building outside it); true when kept.
 // `inner[i]`: ways[i] has the role "inner" (a multipolygon's; empty for a way).
@@ -147,8 +153,13 @@ bool keep_unbuilt(std::vector<UnbuiltBuilding>& unbuilt, const osmium::OSMObject
   b.polygons = Json::array();
   if (b.why_lost.empty()) {
     for (Json& outer : outer_rings) {
+      // An outer ring within an inner one is an island in a courtyard: that hole is not its.
+      const osmium::Box outer_box = ring_box(outer);
       Json polygon = Json::array({std::move(outer)});
-      for (const Json& hole : inner_rings) polygon.push_back(hole);
+      for (const Json& hole : inner_rings)
+        if (!ring_box(hole).contains(outer_box.bottom_left()) ||
+            !ring_box(hole).contains(outer_box.top_right()))
+          polygon.push_back(hole);
       b.polygons.push_back(std::move(polygon));
     }
   } else {  // only its box counts

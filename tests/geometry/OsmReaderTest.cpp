@@ -286,6 +286,33 @@ TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
   fs::remove(path);
 }
 
+// A multipolygon osmium refuses (one of its outer rings is a bow-tie) is repaired as outer rings
+// less inner ones, and an outer ring on an island in a courtyard keeps its area: the courtyard's
+// ring is no hole of it.
+TEST(OsmReader, UnbuiltMultipolygonKeepsItsCourtyardAndTheIslandInIt) {
+  std::string s;
+  for (int i = 0; i <= 12; ++i)
+    for (int j = 0; j <= 9; ++j) s += node(i, j);
+  s += way(70, {{0, 0}, {9, 0}, {9, 9}, {0, 9}, {0, 0}}, "");       // 81 cells
+  s += way(71, {{3, 3}, {6, 3}, {6, 6}, {3, 6}, {3, 3}}, "");       // the courtyard: 9 cells
+  s += way(72, {{4, 4}, {5, 4}, {5, 5}, {4, 5}, {4, 4}}, "");       // the island: 1 cell
+  s += way(73, {{10, 0}, {12, 2}, {12, 0}, {10, 2}, {10, 0}}, "");  // a bow-tie: 2 cells
+  s += relation(
+      80, member(70, "outer") + member(71, "inner") + member(72, "outer") + member(73, "outer"),
+      tag("type", "multipolygon") + tag("building", "yes") + tag("height", "20"));
+  const std::string path =
+      write_temp("island.osm", "<?xml version=\"1.0\"?>\n<osm version=\"0.6\">\n" + s + "</osm>\n");
+  const City city = read_city({path});
+  ASSERT_EQ(city.objects.size(), 1u);
+  const CityObject& o = city.objects[0];
+  ASSERT_TRUE(o.occludes) << "r80 is kept as an object that occludes nothing";
+  const double cell = o.bbox.xy.area() / (12 * 9);
+  double footprint = 0;
+  for (const Polygon& p : o.footprint) footprint += area(p);
+  EXPECT_NEAR(footprint, (81 - 9 + 1 + 2) * cell, 0.2 * cell);
+  fs::remove(path);
+}
+
 // Two OSM files, one with streets and no building: OpenStreetMap is WGS84 whatever a file holds,
 // so the pair is read in either order (it was refused: "OGC:CRS84 differs from ...'s (none)").
 TEST(OsmReader, AFileWithoutBuildingsJoinsTheOthers) {
