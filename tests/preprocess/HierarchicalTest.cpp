@@ -197,6 +197,57 @@ TEST(Hierarchical, FarOutlinesKeepASupersetOfTheBruteForcePvs) {
               far_walls, walls, c.hierarchical / double(c.cells), c.brute / double(c.cells));
 }
 
+// Halls hundreds of metres long behind a row of houses with gaps: the far field decides them
+// tile by tile of 32 x 32 pixel centres (a tile hidden as a whole hides its centres), not
+// centre by centre. A superset of the brute-force map, which tests every centre, and the halls
+// hidden from some cells and seen from others (the tiles are asked, not passed over).
+TEST(Hierarchical, LargeHallsDecidedByTilesStayASupersetOfTheBruteForcePvs) {
+  auto box = [](double x0, double y0, double x1, double y1, double height) {
+    char f[400];
+    std::snprintf(f, sizeof f,
+                  R"({"type":"Feature","properties":{"height":%g},"geometry":{"type":"Polygon",)"
+                  R"("coordinates":[[[%g,%g],[%g,%g],[%g,%g],[%g,%g],[%g,%g]]]}})",
+                  height, 5000 + x0, 9000 + y0, 5000 + x1, 9000 + y0, 5000 + x1, 9000 + y1,
+                  5000 + x0, 9000 + y1, 5000 + x0, 9000 + y0);
+    return std::string(f);
+  };
+  std::string features;
+  for (double x = 0; x < 300; x += 25)  // houses 20 m wide, 5 m gaps, 20 m tall
+    features += box(x, 100, x + 20, 112, 20) + ",";
+  features += box(20, 140, 280, 330, 15) + ",";  // 260 x 190 m: 25,000 centres
+  features += box(0, 360, 300, 620, 12);         // behind it, 300 x 260 m
+  const geometry::City city = geometry::read_city_text(
+      R"({"type":"FeatureCollection","features":[)" + features + "]}", "halls.geojson");
+  const std::uint32_t hall = 12, far_hall = 13;
+  ASSERT_EQ(city.objects.size(), 14u);
+  BakeOptions o;
+  o.cells.max_cell_edge = 30;
+  const geometry::Box2 b = city.bounds().xy;
+  o.cells.region = {geometry::Polygon{{{b.min.x, b.min.y + 30},
+                                       {b.max.x, b.min.y + 30},
+                                       {b.max.x, b.min.y + 90},
+                                       {b.min.x, b.min.y + 90}},
+                                      {}}};
+  const BakeScene hier_scene(city, o);
+  o.method = Method::BruteForce;
+  const BakeScene brute_scene(city, o);
+  CellVisibility hier(hier_scene), brute(brute_scene);
+  ASSERT_GT(hier_scene.cell_count(), 20u);
+  std::size_t far_hidden = 0, far_seen = 0, hall_seen = 0;
+  for (std::uint32_t i = 0; i < hier_scene.cell_count(); ++i) {
+    const std::vector<std::uint32_t> h = hier.pvs(i), r = brute.pvs(i);
+    EXPECT_TRUE(std::includes(h.begin(), h.end(), r.begin(), r.end())) << "cell " << i;
+    const bool far = std::binary_search(h.begin(), h.end(), far_hall);
+    (far ? far_seen : far_hidden) += 1;
+    hall_seen += std::binary_search(h.begin(), h.end(), hall);
+    // No more than the reference shows, but for what sight lines graze.
+    EXPECT_LE(h.size(), r.size() + 1) << "cell " << i;
+  }
+  EXPECT_GT(hall_seen, 0u);
+  EXPECT_GT(far_hidden, 0u);
+  EXPECT_GT(far_seen, 0u);
+}
+
 TEST(Hierarchical, SampleHorizonsAloneStayASupersetOfTheBruteForcePvs) {
   BakeOptions o = strip_options(small_city());
   o.initial_map = o.max_map = 16;  // a map hardly larger than the cell: horizons decide nearly all
