@@ -35,8 +35,13 @@
 namespace urbanpvs::geometry::detail {
 namespace {
 
+std::string element_id(osmium::item_type type, osmium::object_id_type id) {
+  return (type == osmium::item_type::way ? "w" : "r") + std::to_string(id);
+}
+
 std::string element_id(const osmium::Area& a) {
-  return (a.from_way() ? "w" : "r") + std::to_string(a.orig_id());
+  return element_id(a.from_way() ? osmium::item_type::way : osmium::item_type::relation,
+                    a.orig_id());
 }
 
 // One ring as GeoJSON positions; false when a node's location is missing from the extract.
@@ -109,7 +114,7 @@ bool keep_unbuilt(std::vector<UnbuiltBuilding>& unbuilt, const osmium::OSMObject
                   const std::vector<const osmium::Way*>& ways, const std::vector<bool>& inner) {
   if (!is_building(element.tags())) return false;  // a street area that is not built: no street
   UnbuiltBuilding b;
-  b.id = (element.type() == osmium::item_type::way ? "w" : "r") + std::to_string(element.id());
+  b.id = element_id(element.type(), element.id());
   b.properties = Json::object();
   for (const osmium::Tag& t : element.tags())
     if (std::strcmp(t.key(), "type") != 0) b.properties[t.key()] = t.value();
@@ -152,14 +157,16 @@ bool keep_unbuilt(std::vector<UnbuiltBuilding>& unbuilt, const osmium::OSMObject
                                                                : "an open way: no ring";
   b.polygons = Json::array();
   if (b.why_lost.empty()) {
+    std::vector<osmium::Box> hole_boxes;
+    for (const Json& hole : inner_rings) hole_boxes.push_back(ring_box(hole));
     for (Json& outer : outer_rings) {
       // An outer ring within an inner one is an island in a courtyard: that hole is not its.
       const osmium::Box outer_box = ring_box(outer);
       Json polygon = Json::array({std::move(outer)});
-      for (const Json& hole : inner_rings)
-        if (!ring_box(hole).contains(outer_box.bottom_left()) ||
-            !ring_box(hole).contains(outer_box.top_right()))
-          polygon.push_back(hole);
+      for (std::size_t h = 0; h < inner_rings.size(); ++h)
+        if (!hole_boxes[h].contains(outer_box.bottom_left()) ||
+            !hole_boxes[h].contains(outer_box.top_right()))
+          polygon.push_back(inner_rings[h]);
       b.polygons.push_back(std::move(polygon));
     }
   } else {  // only its box counts
@@ -257,7 +264,7 @@ class AreaFeatures : public osmium::handler::Handler {
 
   void way(const osmium::Way& w) {
     if (passed_over(w))
-      report_.warnings.push_back(file_ + ": w" + std::to_string(w.id()) +
+      report_.warnings.push_back(file_ + ": " + element_id(w.type(), w.id()) +
                                  ": building way that is no closed ring in the extract; " +
                                  (keep_unbuilt(unbuilt_, w, {&w}, {})
                                       ? "kept over its nodes there"
@@ -266,7 +273,7 @@ class AreaFeatures : public osmium::handler::Handler {
     Json line;
     if (!ring_json(w.nodes(), line)) return;  // leaves the extract: the street is cut there
     Json street = Json::object();
-    street["id"] = "w" + std::to_string(w.id());
+    street["id"] = element_id(w.type(), w.id());
     street["line"] = std::move(line);
     for (const char* key : {"highway", "width", "est_width", "lanes"})
       if (const char* v = w.tags()[key]) street[key] = v;
@@ -406,7 +413,7 @@ void assemble(const osmium::io::File* input, SortedObjects* sorted, Json& featur
         inner.push_back(std::strcmp(m.role(), "inner") == 0);
       }
     const bool kept = keep_unbuilt(unbuilt, *r, ways, inner);
-    report.warnings.push_back(path + ": r" + std::to_string(r->id()) +
+    report.warnings.push_back(path + ": " + element_id(r->type(), r->id()) +
                               ": multipolygon with members outside the extract; " +
                               (kept ? "kept over its ways there" : "skipped"));
   });

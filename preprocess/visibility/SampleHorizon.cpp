@@ -318,12 +318,9 @@ void SampleHorizon::add(const geometry::Occluder& occluder) {
   // A hole's walls count only from a sample inside it (add_ring); a sample outside the hole's
   // bounds is not, and the hole's vertex directions (one atan2 each) need not be computed to
   // find that out. Courtyards are most holes, and most samples see them from outside.
-  for (const geometry::Ring& h : occluder.shape.holes) {
-    const geometry::Box2 b = geometry::bounds(h);
-    if (b.min.x <= sample_.x && sample_.x <= b.max.x && b.min.y <= sample_.y &&
-        sample_.y <= b.max.y)
-      add_ring(h, occluder, true);
-  }
+  const Vec2 s{sample_.x, sample_.y};
+  for (const geometry::Ring& h : occluder.shape.holes)
+    if (geometry::bounds(h).overlaps({s, s})) add_ring(h, occluder, true);
 }
 
 // Closes sectors t0..t1 (unwrapped numbers) with the facing walls among edges k0..k1 of `ring`
