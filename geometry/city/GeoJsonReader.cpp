@@ -20,6 +20,7 @@
 
 #include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/ObjectOutline.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
 #include "urbanpvs/geometry/city/RoofPrisms.hpp"
 #include "urbanpvs/geometry/city/RoofShapes.hpp"
@@ -159,8 +160,9 @@ struct Feature {
   bool open_sides = false;
   std::optional<double> roof_height;  // roof:height, else roof:levels x level height
   std::string lost;                   // why no footprint of positive area is left, or empty
-  std::string refused_height;         // a height or level count given but not positive, as given
-  std::string payload;                // ReadOptions::payload_key's property
+  Ring lost_outline;           // a lost geometry: the convex hull of its positions (empty: no area)
+  std::string refused_height;  // a height or level count given but not positive, as given
+  std::string payload;         // ReadOptions::payload_key's property
   /// OSM's location=underground, Overture's is_underground: a car park or station below the
   /// street, mapped as a building: its footprint is no wall anyone sees.
   bool underground = false;
@@ -472,14 +474,16 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
 }
 
 // The box of a feature's raw coordinates, whatever their rings are like.
-Box2 raw_box(const Json& feature, const std::string& file, const std::string& id) {
-  Box2 b;
+/// Every position of a feature's polygons, as given, whatever rings they fail to make.
+std::vector<Vec2> raw_positions(const Json& feature, const std::string& file,
+                                const std::string& id) {
+  std::vector<Vec2> out;
   for (const Json* poly : polygon_arrays(feature["geometry"], file, id))
     if (poly->is_array())
       for (const Json& ring : *poly)
         if (ring.is_array())
-          for (const Json& p : ring) b.extend(position(p, file, id));
-  return b;
+          for (const Json& p : ring) out.push_back(position(p, file, id));
+  return out;
 }
 
 }  // namespace
@@ -593,15 +597,19 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
       f.id = feature_id(feature, i);
       f.payload = payload_of(properties_of(feature), options.payload_key);
       heights.read(properties_of(feature), f);  // the geometry is lost, not what the tags say
-      const Box2 in = raw_box(feature, file, f.id);
-      if (in.empty()) {
+      std::vector<Vec2> points = raw_positions(feature, file, f.id);
+      if (points.empty()) {
         report.warnings.push_back(std::string(e.what()) + " (no coordinates: skipped)");
         return;
       }
-      for (Vec2 c : {in.min, in.max}) {
+      for (Vec2& c : points) {
         const auto local = mapping.to_local(c.x, c.y, 0);
-        f.box.extend(Vec2{local[0], local[1]});
+        c = {local[0], local[1]};
+        f.box.extend(c);
       }
+      // Where the building stands: its points' hull, not their box, is taken out of free space,
+      // so a long or diagonal ruin does not take the streets beside it out of the view cells.
+      f.lost_outline = convex_hull(points);
       f.lost = e.what();
       buildings.push_back(std::move(f));
     }
@@ -631,6 +639,7 @@ void load_geojson(const Json& doc, const std::string& file, const LocalFrameMapp
     o.source_id = f.id;
     o.payload = f.payload;  // a building's own; its parts' values are not merged in
     o.footprint = f.polygons;
+    if (o.footprint.empty() && !f.lost_outline.empty()) o.footprint = {Polygon{f.lost_outline, {}}};
     o.ground_z = 0;
     return o;
   };

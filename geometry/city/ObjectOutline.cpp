@@ -18,29 +18,33 @@ Ring box_rectangle(const Box2& b) {
 
 }  // namespace
 
-Ring object_outline(const CityObject& o) {
-  if (!o.occludes) return box_rectangle(o.bbox.xy);
-  std::vector<Kernel::Point_2> points;
-  const auto add = [&](const Vec2& p) { points.emplace_back(p.x, p.y); };
-  for (const Surface3& s : o.surfaces)
-    for (const auto& ring : s.rings)
-      for (const Vec3& v : ring) add({v.x, v.y});
-  for (const Polygon& p : o.footprint)
-    for (const Vec2& v : p.outer) add(v);
-  for (const OccluderPrism& p : o.occluders)
-    for (const Vec2& v : p.footprint.outer) add(v);
-  // The hull's vertices are input points (exact predicates, no constructed coordinates), so
-  // it contains every point exactly.
+Ring convex_hull(const std::vector<Vec2>& points) {
+  std::vector<Kernel::Point_2> in;
+  in.reserve(points.size());
+  for (const Vec2& p : points) in.emplace_back(p.x, p.y);
+  // Exact predicates and no constructed coordinates: the hull's vertices are input points.
   std::vector<Kernel::Point_2> hull;
-  CGAL::convex_hull_2(points.begin(), points.end(), std::back_inserter(hull));
-  if (hull.size() < 3) return box_rectangle(o.bbox.xy);  // no area: a line, a point or nothing
+  CGAL::convex_hull_2(in.begin(), in.end(), std::back_inserter(hull));
+  if (hull.size() < 3) return {};  // no area: a line, a point or nothing
   Ring out;
   out.reserve(hull.size());
+  for (const Kernel::Point_2& p : hull) out.push_back({p.x(), p.y()});
+  return out;
+}
+
+Ring object_outline(const CityObject& o) {
+  if (!o.occludes) return box_rectangle(o.bbox.xy);
+  std::vector<Vec2> points;
+  for (const Surface3& s : o.surfaces)
+    for (const auto& ring : s.rings)
+      for (const Vec3& v : ring) points.push_back({v.x, v.y});
+  for (const Polygon& p : o.footprint) points.insert(points.end(), p.outer.begin(), p.outer.end());
+  for (const OccluderPrism& p : o.occluders)
+    points.insert(points.end(), p.footprint.outer.begin(), p.footprint.outer.end());
+  Ring out = convex_hull(points);
+  if (out.empty()) return box_rectangle(o.bbox.xy);
   Box2 extent;
-  for (const Kernel::Point_2& p : hull) {
-    out.push_back({p.x(), p.y()});
-    extent.extend(out.back());
-  }
+  for (const Vec2& v : out) extent.extend(v);
   // The box may hold geometry the surfaces do not (a ring the reader could not use): then the
   // hull does not account for all of the object, and the box decides.
   constexpr double kSlack = 1e-6;  // m: rounding between the box and the points it came from

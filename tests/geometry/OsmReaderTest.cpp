@@ -180,7 +180,8 @@ TEST(OsmReader, TagsIdsMultipolygonsAndPartsFromOsmXml) {
 // and occlude; what cannot be mended (members or nodes outside the extract, an open way, a
 // multipolygon whose ways do not close up) is kept as an object
 // that occludes nothing over the box of its nodes in the file, as tall as its tags say or, without
-// them, as a building may be. Nodes that span no area (a building's corner) are no building.
+// them, as a building may be; the convex hull of those nodes, not their box, is its footprint
+// (what leaves free space). Nodes that span no area (a building's corner) are no building.
 TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
   std::string s;
   for (int i = 0; i < 10; ++i)
@@ -259,11 +260,13 @@ TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
     Box2 box;
     double height;
     const char* why;
+    double hull_cells;  // the convex hull of its nodes in the file, in lattice cells
   };
-  for (const Expect& e : {Expect{"r52", nodes_box(0, 3, 2, 5), 90, "do not form rings"},
-                          Expect{"r51", nodes_box(4, 8, 6, 10), 90, "members outside the extract"},
-                          Expect{"w44", nodes_box(0, 8, 2, 10), 90, "an open way"},
-                          Expect{"w45", nodes_box(7, 9, 9, 11), 90, "outside the extract"}}) {
+  for (const Expect& e :
+       {Expect{"r52", nodes_box(0, 3, 2, 5), 90, "do not form rings", 4},
+        Expect{"r51", nodes_box(4, 8, 6, 10), 90, "members outside the extract", 4},
+        Expect{"w44", nodes_box(0, 8, 2, 10), 90, "an open way", 2},  // a triangle, half its box
+        Expect{"w45", nodes_box(7, 9, 9, 11), 90, "outside the extract", 2}}) {
     SCOPED_TRACE(e.id);
     const CityObject* o = find(city, e.id);
     EXPECT_FALSE(o->occludes);
@@ -273,6 +276,8 @@ TEST(OsmReader, BuildingsTheAssemblerCannotBuildAreKept) {
     EXPECT_NEAR(o->bbox.xy.max.x, e.box.max.x, 0.05);
     EXPECT_NEAR(o->bbox.xy.min.y, e.box.min.y, 0.05);
     EXPECT_NEAR(o->bbox.xy.max.y, e.box.max.y, 0.05);
+    ASSERT_EQ(o->footprint.size(), 1u);
+    EXPECT_NEAR(area(o->footprint[0]), e.hull_cells * cell_area, 0.01 * cell_area);
     EXPECT_TRUE(mentions(city.report.non_occluding, std::string(e.id) + ": ", e.why));
   }
   options.strict = true;

@@ -10,6 +10,11 @@
 
 namespace urbanpvs::geometry {
 
+/// Counter-clockwise convex hull (CGAL) of `points`; its vertices are input points, so it
+/// contains every one of them exactly. Empty when they span no area (fewer than three, or all
+/// on one line).
+Ring convex_hull(const std::vector<Vec2>& points);
+
 /// Counter-clockwise convex hull (CGAL) of the xy of every point of `o`'s surfaces, footprints
 /// and occluders: it contains every point of the object. An object that does not occlude is
 /// tested over its whole box (it may be anywhere in it), and so is one without points or whose
