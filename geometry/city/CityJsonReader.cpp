@@ -16,6 +16,7 @@
 
 #include "CityReaders.hpp"
 #include "urbanpvs/geometry/city/InputError.hpp"
+#include "urbanpvs/geometry/city/ObjectOutline.hpp"
 #include "urbanpvs/geometry/city/RingCleanup.hpp"
 #include "urbanpvs/geometry/city/RoofPrisms.hpp"
 #include "urbanpvs/geometry/city/SteppedRoof.hpp"
@@ -874,19 +875,26 @@ CityObject read_building_box(const Objects& objs, const std::string& id, const J
   objs.collect_parts(id, obj, members, 0);
   CityObject o;
   o.source_id = id;
+  std::vector<Vec2> points;
+  const auto add = [&](const Vertex& v) {
+    o.bbox.extend(Vec2{v[0], v[1]}, v[2]);
+    points.push_back({v[0], v[1]});
+  };
   for (const auto& [pid, pobj] : members) {
     const Json* g = chosen_geometry(*pobj);
     if (!g) continue;
     for (const Surface& sf : surfaces_of(*g, objs.file.file(), pid))
       for (const Json& ring : *sf.rings)
-        for (const Vertex& v : ring_vertices(objs.file, ring, pid))
-          o.bbox.extend(Vec2{v[0], v[1]}, v[2]);
+        for (const Vertex& v : ring_vertices(objs.file, ring, pid)) add(v);
   }
   objs.for_each_installation_surface(members, [&](const Surface3& sf) {
     for (const auto& r : sf.rings)
-      for (const Vertex& v : r) o.bbox.extend(Vec2{v[0], v[1]}, v[2]);
+      for (const Vertex& v : r) add(v);
   });
   o.ground_z = o.bbox.zmin;
+  // Where it stands (what leaves free space): the convex hull of its vertices seen from above,
+  // not their box, which covers twice the area of a building turned 45 degrees.
+  if (Ring hull = convex_hull(points); !hull.empty()) o.footprint = {Polygon{std::move(hull), {}}};
   return o;
 }
 

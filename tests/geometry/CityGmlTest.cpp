@@ -148,6 +148,35 @@ TEST(CityGml, UnreadableRingKeepsItsBuildingAsAnObjectThatOccludesNothing) {
   }
 }
 
+// Such a building stands on the convex hull of the vertices that could be read, not on their
+// box: a triangle keeps the other half of its box in free space (a diagonal or long
+// ruin does not take the streets beside it out of the view cells).
+TEST(CityGml, UnreadableBuildingStandsOnTheHullOfItsVertices) {
+  auto polygon = [](const std::string& pos_list) {
+    return "<gml:surfaceMember><gml:Polygon><gml:exterior><gml:LinearRing><gml:posList>" +
+           pos_list +
+           "</gml:posList></gml:LinearRing></gml:exterior></gml:Polygon>"
+           "</gml:surfaceMember>";
+  };
+  const std::string text =
+      "<?xml version=\"1.0\"?><CityModel xmlns=\"http://www.opengis.net/citygml/2.0\" "
+      "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" "
+      "xmlns:gml=\"http://www.opengis.net/gml\"><gml:boundedBy><gml:Envelope "
+      "srsName=\"EPSG:28992\" srsDimension=\"3\"/></gml:boundedBy><cityObjectMember>"
+      "<bldg:Building gml:id=\"wedge\"><bldg:lod2MultiSurface><gml:MultiSurface>" +
+      polygon("0 0 0 0 20 0 20 0 0 0 0 0") + polygon("0 0 9 20 0 9 0 20 9 0 0 9") +
+      polygon("2 2 9 3 2 9 3 3") +
+      "</gml:MultiSurface></bldg:lod2MultiSurface></bldg:Building>"
+      "</cityObjectMember></CityModel>";
+  const City city = read_city_text(text, "wedge.gml", {});
+  ASSERT_EQ(city.objects.size(), 1u);
+  const CityObject& o = city.objects[0];
+  EXPECT_FALSE(o.occludes);
+  EXPECT_NEAR(o.bbox.xy.area(), 400, 1e-6);  // tested for visibility over its box
+  ASSERT_EQ(o.footprint.size(), 1u);
+  EXPECT_NEAR(area(o.footprint[0]), 200, 1e-6);  // free space loses the triangle only
+}
+
 TEST(CityGml, GenericAttributesAreWhatPayloadReads) {
   ReadOptions options;
   options.payload_key = "tile";
