@@ -996,7 +996,8 @@ void load_cityjson(const Json& doc, const std::string& file, const LocalFrameMap
     }
     check_plausible(o, options, file);
     if (!o.occludes) {
-      o.footprint.clear();  // a part is missing from it: the box covers the whole building
+      // A part may be missing from its footprint: it stands on the hull of all it has.
+      if (Ring hull = object_hull(o); !hull.empty()) o.footprint = {Polygon{std::move(hull), {}}};
       city.objects.push_back(
           non_occluding(std::move(o), file + ": " + id + ": " + why_not, city.report));
       continue;

@@ -33,7 +33,10 @@ Ring convex_hull(const std::vector<Vec2>& points) {
 }
 
 Ring object_outline(const CityObject& o) {
-  if (!o.occludes) return box_rectangle(o.bbox.xy);
+  return o.occludes ? object_hull(o) : box_rectangle(o.bbox.xy);
+}
+
+Ring object_hull(const CityObject& o) {
   std::vector<Vec2> points;
   for (const Surface3& s : o.surfaces)
     for (const auto& ring : s.rings)

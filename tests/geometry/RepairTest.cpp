@@ -175,6 +175,28 @@ TEST(RepairReading, BuildingWithoutHeightIsTestedAsTallAsItMayBe) {
   }
 }
 
+// A CityJSON building that gives no occluder (here only a LoD0 footprint, its height unknown)
+// stands on the convex hull of its positions: a triangle takes half of its box out of free
+// space, and is tested for visibility over the whole box, up to --max-height.
+TEST(RepairReading, BuildingWithoutOccluderStandsOnTheHullOfItsPositions) {
+  const std::string text = R"({"type": "CityJSON", "version": "2.0",
+    "transform": {"scale": [0.001, 0.001, 0.001], "translate": [84000, 447000, 0]},
+    "metadata": {"referenceSystem": "https://www.opengis.net/def/crs/EPSG/0/7415"},
+    "CityObjects": {"wedge": {"type": "Building", "geometry": [
+      {"type": "MultiSurface", "lod": "0", "boundaries": [[[0, 1, 2]]]}]}},
+    "vertices": [[0, 0, 0], [20000, 0, 0], [0, 20000, 0]]})";
+  ReadOptions options;
+  options.max_height = 100;
+  const City c = read_city_text(text, "wedge.city.json", options);
+  ASSERT_EQ(c.objects.size(), 1u);
+  const CityObject& o = c.objects[0];
+  EXPECT_FALSE(o.occludes);
+  EXPECT_NEAR(o.bbox.xy.area(), 400, 1e-6);
+  EXPECT_NEAR(o.bbox.zmax - o.ground_z, 100, 1e-9);
+  ASSERT_EQ(o.footprint.size(), 1u);
+  EXPECT_NEAR(area(o.footprint[0]), 200, 1e-6);
+}
+
 TEST(RepairReading, RealTileWithOneBrokenRingReadsWithTheDefaults) {
   const std::filesystem::path path =
       std::filesystem::path(URBANPVS_SHARED_CITIES) / "tudelft_3dbag_tile5910.city.json";

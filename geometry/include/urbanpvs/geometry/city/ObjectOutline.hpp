@@ -16,10 +16,13 @@ namespace urbanpvs::geometry {
 Ring convex_hull(const std::vector<Vec2>& points);
 
 /// Counter-clockwise convex hull (CGAL) of the xy of every point of `o`'s surfaces, footprints
-/// and occluders: it contains every point of the object. An object that does not occlude is
-/// tested over its whole box (it may be anywhere in it), and so is one without points or whose
-/// box reaches beyond its points (geometry the reader kept out of its surfaces): then the
-/// outline is its box's rectangle. Empty only when the box is empty.
+/// and occluders: it contains every point of the object. When there are no such points, or the
+/// box reaches beyond them (geometry the reader kept out of its surfaces), it is the box's
+/// rectangle. Empty only when the box is empty.
+Ring object_hull(const CityObject& o);
+
+/// The outline a cull map tests `o` over: object_hull(o), but the box's rectangle for an object
+/// that does not occlude (it is tested over its whole box: it may be anywhere in it).
 Ring object_outline(const CityObject& o);
 
 }  // namespace urbanpvs::geometry
