@@ -869,7 +869,8 @@ CityObject read_building(const Objects& objs, const std::string& id, const Json&
 }
 
 // The box of every vertex a building, its parts and installations use, for a building whose
-// geometry gives no occluder: it is still an object, tested over this box.
+// geometry gives no occluder: it is still an object, tested over this box, and standing on the
+// convex hull of those vertices.
 CityObject read_building_box(const Objects& objs, const std::string& id, const Json& obj) {
   std::vector<std::pair<std::string, const Json*>> members;
   objs.collect_parts(id, obj, members, 0);
@@ -892,8 +893,8 @@ CityObject read_building_box(const Objects& objs, const std::string& id, const J
       for (const Vertex& v : r) add(v);
   });
   o.ground_z = o.bbox.zmin;
-  // Where it stands (what leaves free space): the convex hull of its vertices seen from above,
-  // not their box, which covers twice the area of a building turned 45 degrees.
+  // What it takes out of free space: the hull, not the box, which covers twice the area of a
+  // building turned 45 degrees.
   if (Ring hull = convex_hull(points); !hull.empty()) o.footprint = {Polygon{std::move(hull), {}}};
   return o;
 }

@@ -473,7 +473,6 @@ std::string add_occluders(Feature& f, CityObject& o, const std::string& file,
   return {};
 }
 
-// The box of a feature's raw coordinates, whatever their rings are like.
 /// Every position of a feature's polygons, as given, whatever rings they fail to make.
 std::vector<Vec2> raw_positions(const Json& feature, const std::string& file,
                                 const std::string& id) {
