@@ -65,6 +65,7 @@ SampleHorizon::SampleHorizon()
       pending_count_(kBins),
       first_pending_(kBins, std::numeric_limits<double>::infinity()),
       reach_(kBins),
+      near_(kBins),
       low_(kBins),
       sector_mark_(kBins, 0) {}
 
@@ -313,7 +314,6 @@ bool SampleHorizon::hides_point(Vec2 p, double top) const {
 }
 
 void SampleHorizon::add(const geometry::Occluder& occluder) {
-  if (!(occluder.top_high() > sample_.z)) return;  // walls below the eye hide nothing rising
   add_ring(occluder.shape.outer, occluder, false);
   // A hole's walls count only from a sample inside it (add_ring); a sample outside the hole's
   // bounds is not, and the hole's vertex directions (one atan2 each) need not be computed to
@@ -330,7 +330,13 @@ void SampleHorizon::add(const geometry::Occluder& occluder) {
 // top (thesis 4.2.1) the sector also takes the lowest point of those walls' tops within it, at
 // an end of each part (the top is linear along a wall): a ray crosses a wall no lower than that
 // and no farther than the reach, so the slope (lowest − eye) / reach stays below every ray's,
-// and a sector whose lowest top is not above the eye gets nothing.
+// and a sector whose lowest top is not above the eye gets nothing from that bound.
+// Below the eye, a wall hides what a ray passes it below its top just as well (the ray enters the
+// occluder; thesis 4.2.1), but (lowest − eye) is negative there and a ray's slope is least where
+// it crosses nearest: the sector takes the nearest crossing within it, which is an end of a part
+// of a wall, or the foot of the perpendicular from the sample when it lies between the ends
+// (the distance along a wall falls towards that foot and rises beyond it). Looking down from a
+// hillside onto the roofs below, those walls decide what the sight lines had to.
 // Sectors marked with `skip_mark` are left alone; closed ones are marked with `mark`.
 template <class Angle>
 void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, std::size_t k1,
@@ -340,6 +346,8 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
   const std::size_t n = ring.size();
   const Vec2 s{sample_.x, sample_.y};
   const bool sloped = occluder.sloped();
+  // Nearest crossings are needed only where a top lies below the eye.
+  const bool below = occluder.top_low() < sample_.z;
   touched_.clear();
   for (std::size_t k = k0; k <= k1; ++k) {
     const Vec2 p = ring[k % n], q = ring[(k + 1) % n];
@@ -355,6 +363,11 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     const double a_hi = p_first ? a_q : a_p;
     const double at_lo = vertex_distance_[(p_first ? k : k + 1) % n];
     const double at_hi = vertex_distance_[(p_first ? k + 1 : k) % n];
+    // Along the wall's line the distance from the sample is least at the foot of the
+    // perpendicular. A ray whose direction has a positive component along e crosses the line
+    // past the foot (towards q), a negative one before it: the foot lies between two crossings
+    // whose directions have components of opposite signs along e.
+    const double foot = below ? std::abs(num) / ground_length(e.x, e.y) : 0;
     const auto u0 = std::max(t0, static_cast<long long>(std::floor(a_lo / kSector)));
     const auto u1 = std::min(t1, static_cast<long long>(std::floor(a_hi / kSector)));
     if (u1 < u0) continue;
@@ -366,6 +379,10 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     double top_from = !sloped || static_cast<double>(u0) * kSector < a_lo
                           ? top_lo
                           : occluder.top_at(s + at_from * border(u0));
+    double along_from = 0;  // the direction of the crossing at `from`, along e
+    if (below)
+      along_from = geometry::dot(
+          static_cast<double>(u0) * kSector < a_lo ? (p_first ? p : q) - s : border(u0), e);
     auto b = static_cast<std::size_t>(bin_of(u0));
     // The borders u0 + 1 .. u1 + 1, all at once.
     const int first = bin_of(u0 + 1);
@@ -386,16 +403,26 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
         top_to = at_end ? top_hi : occluder.top_at(s + at_to * border(t + 1));
         low = std::min(top_from, top_to);
       }
+      double near = 0, along_to = 0;
+      if (below) {
+        along_to = geometry::dot(at_end ? (p_first ? q : p) - s : border(t + 1), e);
+        near = (along_from < 0 && along_to > 0) || (along_from > 0 && along_to < 0)
+                   ? foot
+                   : std::min(at_from, at_to);
+      }
       if (sector_mark_[b] != skip_mark) {
         if (reach_[b] == 0) {
           touched_.push_back(static_cast<int>(b));
           if (sloped) low_[b] = low;
+          if (below) near_[b] = near;
         }
         reach_[b] = std::max({reach_[b], at_from, at_to, 1e-300});
         if (sloped) low_[b] = std::min(low_[b], low);
+        if (below) near_[b] = std::min(near_[b], near);
       }
       at_from = at_to;
       top_from = top_to;
+      along_from = along_to;
       b = b + 1 == static_cast<std::size_t>(kBins) ? 0 : b + 1;
     }
   }
@@ -408,7 +435,13 @@ void SampleHorizon::close_sectors(const geometry::Ring& ring, std::size_t k0, st
     const double rise = (sloped ? low_[i] - 1e-7 : occluder.top_z) - sample_.z;
     reach_[i] = 0;
     sector_mark_[i] = mark;
-    if (rise > 0) insert(b, Entry{r, rise / r});
+    if (rise > 0) {
+      insert(b, Entry{r, rise / r});
+    } else if (rise < 0 && below) {
+      // Slightly nearer than computed, for the same reason: the slope comes out no higher.
+      const double nearest = near_[i] * (1 - 1e-9) - 1e-9;
+      if (nearest > 0) insert(b, Entry{r, rise / nearest});
+    }
   }
 }
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <numbers>
 #include <random>
+#include <utility>
 
 #include "urbanpvs/preprocess/visibility/SampleHorizon.hpp"
 #include "urbanpvs/preprocess/visibility/SightLine.hpp"
@@ -21,22 +22,22 @@ using geometry::Box3;
 using geometry::Occluder;
 using geometry::Ring;
 
-// True when the segment s→p passes through the wall over edge a–b below its top.
-bool wall_cuts(const Vec3& s, const Vec3& p, Vec2 a, Vec2 b, double top) {
+// True when the segment s→p passes through the wall over edge a–b of `o` below its top there.
+bool wall_cuts(const Vec3& s, const Vec3& p, Vec2 a, Vec2 b, const Occluder& o) {
   const Vec2 s2{s.x, s.y}, d{p.x - s.x, p.y - s.y}, e = b - a;
   const double den = geometry::cross(d, e);
   if (den == 0) return false;
   const double t = geometry::cross(a - s2, e) / den;  // along s→p
   const double u = geometry::cross(a - s2, d) / den;  // along a→b
   if (!(t > 0 && t < 1 && u >= 0 && u <= 1)) return false;
-  return s.z + t * (p.z - s.z) < top;
+  return s.z + t * (p.z - s.z) < o.top_at(a + u * e);
 }
 
 bool blocked_by_walls(const Vec3& s, const Vec3& p, const std::vector<Occluder>& occluders) {
   for (const Occluder& o : occluders) {
     bool cut = false;
     geometry::for_each_edge(o.shape,
-                            [&](Vec2 a, Vec2 b) { cut = cut || wall_cuts(s, p, a, b, o.top_z); });
+                            [&](Vec2 a, Vec2 b) { cut = cut || wall_cuts(s, p, a, b, o); });
     if (cut) return true;
   }
   return false;
@@ -106,16 +107,67 @@ void expect_hidden_by_ground_truth(const Vec3& s, const Box3& box,
     }
 }
 
+using Uniform = std::uniform_real_distribution<double>;
+
+// Occluder k of a random scene: a star of 5 to 13 corners around a random centre, every third
+// one concave; the centre and the shape.
+std::pair<Vec2, geometry::Polygon> random_star(int k, Uniform& pos, Uniform& size,
+                                               std::mt19937_64& rng) {
+  const Vec2 c{pos(rng), pos(rng)};
+  return {c, geometry::Polygon{star(c, size(rng), 5 + k % 9, k % 3 == 0, rng), {}}};
+}
+
+// A sample outside every occluder's bounds.
+Vec3 free_sample(const std::vector<Occluder>& occluders, std::mt19937_64& rng, Uniform& pos,
+                 Uniform& eye) {
+  for (;;) {
+    const Vec3 s{pos(rng), pos(rng), eye(rng)};
+    if (std::none_of(occluders.begin(), occluders.end(), [&](const Occluder& o) {
+          return s.x >= o.bounds.min.x && s.x <= o.bounds.max.x && s.y >= o.bounds.min.y &&
+                 s.y <= o.bounds.max.y;
+        }))
+      return s;
+  }
+}
+
+// 300 boxes over and around the scene, standing on the ground, with tops from `top`.
+template <class Top>
+std::vector<Box3> random_boxes(std::mt19937_64& rng, Uniform& pos, Uniform& size, Top&& top) {
+  std::vector<Box3> boxes;
+  for (int k = 0; k < 300; ++k) {
+    Box3 b;
+    const Vec2 c{pos(rng) * 1.5, pos(rng) * 1.5};
+    b.xy.extend(c);
+    b.xy.extend(c + Vec2{size(rng), size(rng)});
+    b.zmin = 0;
+    b.zmax = top();
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
+// Sweeps `boxes` from `s` and checks every box it hides against the ground truth; counts the
+// boxes tested and hidden.
+void check_sweep(const Vec3& s, const std::vector<Occluder>& occluders,
+                 const std::vector<Box3>& boxes, std::size_t& hidden, std::size_t& tested) {
+  const std::vector<bool> h = sweep(s, occluders, boxes);
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    ++tested;
+    if (!h[k]) continue;
+    ++hidden;
+    expect_hidden_by_ground_truth(s, boxes[k], occluders);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+}
+
 TEST(SampleHorizon, HidesOnlyWhatEverySightLineShowsHidden) {
   std::mt19937_64 rng(21);
-  std::uniform_real_distribution<double> pos(-200, 200), size(4, 30), top(3, 40), eye(0.5, 6),
-      box_size(1, 15);
+  Uniform pos(-200, 200), size(4, 30), top(3, 40), eye(0.5, 6), box_size(1, 15);
   std::size_t hidden = 0, tested = 0;
   for (int scene = 0; scene < 40; ++scene) {
     std::vector<Occluder> occluders;
     for (int k = 0; k < 60; ++k) {
-      const Vec2 c{pos(rng), pos(rng)};
-      geometry::Polygon shape{star(c, size(rng), 5 + k % 9, k % 3 == 0, rng), {}};
+      auto [c, shape] = random_star(k, pos, size, rng);
       if (k % 7 == 0) {  // a courtyard
         Ring hole = star(c, 0.3 * size(rng), 6, false, rng);
         std::reverse(hole.begin(), hole.end());
@@ -123,37 +175,52 @@ TEST(SampleHorizon, HidesOnlyWhatEverySightLineShowsHidden) {
       }
       occluders.push_back(make_occluder(std::move(shape), top(rng)));
     }
-    // A sample outside every occluder's bounds.
-    Vec3 s;
-    bool free = false;
-    while (!free) {
-      s = {pos(rng), pos(rng), eye(rng)};
-      free = std::none_of(occluders.begin(), occluders.end(), [&](const Occluder& o) {
-        return s.x >= o.bounds.min.x && s.x <= o.bounds.max.x && s.y >= o.bounds.min.y &&
-               s.y <= o.bounds.max.y;
-      });
-    }
-    std::vector<Box3> boxes;
-    for (int k = 0; k < 300; ++k) {
-      Box3 b;
-      const Vec2 c{pos(rng) * 1.5, pos(rng) * 1.5};
-      b.xy.extend(c);
-      b.xy.extend(c + Vec2{box_size(rng), box_size(rng)});
-      b.zmin = 0;
-      b.zmax = top(rng) * 0.8;
-      boxes.push_back(b);
-    }
-    const std::vector<bool> h = sweep(s, occluders, boxes);
-    for (std::size_t k = 0; k < boxes.size(); ++k) {
-      ++tested;
-      if (!h[k]) continue;
-      ++hidden;
-      expect_hidden_by_ground_truth(s, boxes[k], occluders);
-      if (HasFatalFailure()) return;
-    }
+    const Vec3 s = free_sample(occluders, rng, pos, eye);
+    check_sweep(s, occluders, random_boxes(rng, pos, box_size, [&] { return top(rng) * 0.8; }),
+                hidden, tested);
+    if (HasFatalFailure()) return;
   }
   // The test is not vacuous: in these dense scenes a good share is hidden.
   EXPECT_GT(hidden, tested / 10);
+  std::printf("hidden %zu of %zu boxes\n", hidden, tested);
+}
+
+// Looking down from a hillside: every top lies below the eye, some of them sloped, some of them
+// thin walls seen at a slant, where the crossings within a sector lie far apart. A ray that
+// passes a facing wall below its top enters the occluder (thesis 4.2.1) whether the wall rises
+// above the eye or not; the horizon counts such walls from their nearest crossing in a sector.
+TEST(SampleHorizon, WallsBelowTheEyeHideOnlyWhatEverySightLineShowsHidden) {
+  std::mt19937_64 rng(23);
+  Uniform pos(-200, 200), size(4, 30), top(3, 25), eye(50, 70), box_size(1, 15), slope(-0.3, 0.3),
+      box_top(0.5, 20);
+  std::size_t hidden = 0, tested = 0;
+  for (int scene = 0; scene < 40; ++scene) {
+    std::vector<Occluder> occluders;
+    for (int k = 0; k < 60; ++k) {
+      auto [c, shape] = random_star(k, pos, size, rng);
+      if (k % 4 == 0) {  // a thin wall, 0.5 m by up to 80 m, in any direction
+        const double a = Uniform(0, std::numbers::pi)(rng);
+        const Vec2 u{std::cos(a), std::sin(a)}, v{-u.y, u.x};
+        const double half = 2 * size(rng);
+        shape.outer = {c - half * u - 0.25 * v, c + half * u - 0.25 * v, c + half * u + 0.25 * v,
+                       c - half * u + 0.25 * v};
+      }
+      Occluder o = make_occluder(std::move(shape), top(rng));
+      if (scene % 2 == 1) {  // a sloped top, lowest at least 1 m above the ground
+        o.slope = {slope(rng), slope(rng)};
+        o.origin = c;
+        if (o.top_low() < 1) o.top_z += 1 - o.top_low();
+      }
+      occluders.push_back(std::move(o));
+    }
+    const Vec3 s = free_sample(occluders, rng, pos, eye);
+    for (const Occluder& o : occluders) ASSERT_LT(o.top_high(), s.z);
+    check_sweep(s, occluders, random_boxes(rng, pos, box_size, [&] { return box_top(rng); }),
+                hidden, tested);
+    if (HasFatalFailure()) return;
+  }
+  // Walls below the eye hide a share: a horizon that skipped them would hide nothing here.
+  EXPECT_GT(hidden, tested / 20);
   std::printf("hidden %zu of %zu boxes\n", hidden, tested);
 }
 
@@ -313,7 +380,7 @@ TEST(SightLine, AgreesWithEveryDrawnWallTestedInTurn) {
     for (const Occluder& o : occluders)
       geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
         const bool drawn = s.z > o.top_z || geometry::cross(b - a, Vec2{s.x, s.y} - a) < 0;
-        expected = expected || (drawn && wall_cuts(s, p, a, b, o.top_z));
+        expected = expected || (drawn && wall_cuts(s, p, a, b, o));
       });
     ASSERT_EQ(sight_line_blocked(s, p, tree, occluders, 0), expected) << k;
     // Asking an occluder first (the last blocker, or one at random) gives the same answer, and

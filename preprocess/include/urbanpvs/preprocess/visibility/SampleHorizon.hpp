@@ -11,7 +11,8 @@
 // Conservative by construction, for the same ε-shrunk occluders as the cull maps:
 //  - a sector counts a wall only when the facing walls of one ring cover the whole sector, and
 //    only from the distance where every ray of the sector has crossed one of them;
-//  - the slope of a sector is the least over its rays (the ray that crosses farthest);
+//  - the slope of a sector is the least over its rays: the ray that crosses farthest where the
+//    walls rise above the sample, nearest where they stand below it (looking down a hillside);
 //  - a box is tested over every sector it touches, in each at its nearest point there, counting
 //    only walls the sector's rays have crossed by then.
 // So whatever it hides is hidden in the exact per-sample umbra, and so in the brute-force cull
@@ -68,8 +69,8 @@ class SampleHorizon {
   /// where the box as a whole is not hidden.
   bool hides_point(Vec2 p, double top) const;
 
-  /// Adds the walls of `occluder` that face the sample and rise above it. Call it once the
-  /// sweep has reached the occluder (distance_to(occluder.bounds) >= the last query's).
+  /// Adds the walls of `occluder` that face the sample, above or below its eye. Call it once
+  /// the sweep has reached the occluder (distance_to(occluder.bounds) >= the last query's).
   void add(const geometry::Occluder& occluder);
 
  private:
@@ -108,6 +109,7 @@ class SampleHorizon {
   /// per sector: no pending wall reaches nearer (a lower bound: walls dropped or folded leave it)
   std::vector<double> first_pending_;
   std::vector<double> angle_, reach_;    ///< scratch of add_ring (reach_ per sector, kept 0)
+  std::vector<double> near_;             ///< scratch of add_ring: per sector, nearest crossing
   std::vector<double> low_;              ///< scratch of add_ring: per sector, its lowest wall end
   std::vector<double> vertex_distance_;  ///< scratch of add_ring: each ring vertex's distance
   std::vector<double> crossing_;         ///< scratch of close_sectors: a wall's border crossings
