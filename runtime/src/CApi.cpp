@@ -18,7 +18,8 @@ struct urbanpvs_file {
 };
 
 struct urbanpvs_decoder {
-  explicit urbanpvs_decoder(const PvsFile& f) noexcept : decoder(f) {}
+  urbanpvs_decoder(const PvsFile& f, std::size_t cached_cells) noexcept
+      : decoder(f, cached_cells) {}
   PvsDecoder decoder;
 };
 
@@ -208,15 +209,36 @@ urbanpvs_status urbanpvs_cell(const urbanpvs_file* file, uint32_t cell, double t
 }
 
 urbanpvs_status urbanpvs_decoder_create(const urbanpvs_file* file, urbanpvs_decoder** out) {
+  return urbanpvs_decoder_create_cached(file, 1, out);
+}
+
+urbanpvs_status urbanpvs_decoder_create_cached(const urbanpvs_file* file, size_t cached_cells,
+                                               urbanpvs_decoder** out) {
   if (out == nullptr) return URBANPVS_INVALID_ARGUMENT;
   *out = nullptr;
   if (file == nullptr) return URBANPVS_INVALID_ARGUMENT;
-  *out = new (std::nothrow) urbanpvs_decoder(file->file);
-  return *out != nullptr ? URBANPVS_OK : URBANPVS_OUT_OF_MEMORY;
+  urbanpvs_decoder* decoder = new (std::nothrow) urbanpvs_decoder(file->file, cached_cells);
+  // The C++ decoder falls back to one slot when the cache does not fit; here that is a failure.
+  if (decoder == nullptr || decoder->decoder.cached_cells() < cached_cells) {
+    delete decoder;
+    return URBANPVS_OUT_OF_MEMORY;
+  }
+  *out = decoder;
+  return URBANPVS_OK;
 }
 
 void urbanpvs_decoder_destroy(urbanpvs_decoder* decoder) {
   delete decoder;
+}
+
+urbanpvs_status urbanpvs_decoder_pvs(urbanpvs_decoder* decoder, uint32_t cell,
+                                     const uint32_t** objects, size_t* count) {
+  if (decoder == nullptr || objects == nullptr || count == nullptr)
+    return URBANPVS_INVALID_ARGUMENT;
+  const Status status = decoder->decoder.decode(cell);
+  *objects = decoder->decoder.begin();
+  *count = decoder->decoder.size();
+  return to_c(status);
 }
 
 urbanpvs_status urbanpvs_pvs_union(urbanpvs_decoder* decoder, const uint32_t* cells, size_t n,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <new>
 #include <utility>
@@ -316,10 +317,48 @@ Status PvsFile::pvs_encoding(std::uint32_t cell, PvsEncodingInfo& out) const noe
   return Status::kOk;
 }
 
-PvsDecoder::PvsDecoder(const PvsFile& file) noexcept
+namespace {
+
+/// Slots per set of the decoder's cache. A crowd's cells map to sets by hash; with few ways,
+/// more agents than ways land in some sets and evict each other on every turn (200 walkers in
+/// 64 sets of 4: a quarter of the queries missed). 16 ids are one cache line to scan.
+constexpr std::size_t kWays = 16;
+
+/// The set of `cell` among `sets` (Fibonacci hashing: neighbouring cell indices, which a walker
+/// visits in turn, land in different sets).
+std::size_t set_of(std::uint32_t cell, std::size_t sets) noexcept {
+  return static_cast<std::size_t>((std::uint64_t{cell} * 0x9E3779B97F4A7C15ull) >> 32) % sets;
+}
+
+}  // namespace
+
+PvsDecoder::PvsDecoder(const PvsFile& file, std::size_t cached_cells) noexcept
     : file_(&file), capacity_(file.decode_buffer_size()) {
-  buffer_.reset(new (std::nothrow) std::uint32_t[std::max<std::size_t>(capacity_, 1)]);
-  if (!buffer_) capacity_ = 0;
+  // Whole sets of kWays when there are more than kWays slots; one set of them all otherwise.
+  std::size_t wanted = std::max<std::size_t>(cached_cells, 1);
+  if (wanted > kWays && wanted <= SIZE_MAX - kWays) wanted = (wanted + kWays - 1) / kWays * kWays;
+  const std::size_t slot = std::max<std::size_t>(capacity_, 1);
+  for (std::size_t n : {wanted, std::size_t{1}}) {
+    if (n > SIZE_MAX / slot / sizeof(std::uint32_t)) continue;
+    buffer_.reset(new (std::nothrow) std::uint32_t[n * slot]);
+    slot_cell_.reset(new (std::nothrow) std::uint32_t[n]);
+    slot_size_.reset(new (std::nothrow) std::uint32_t[n]);
+    slot_used_.reset(new (std::nothrow) std::uint64_t[n]);
+    if (buffer_ && slot_cell_ && slot_size_ && slot_used_) {
+      slots_ = n;
+      break;
+    }
+  }
+  if (slots_ == 0) {
+    buffer_.reset();
+    capacity_ = 0;
+    return;
+  }
+  capacity_ = slot;
+  ways_ = std::min(slots_, kWays);
+  std::fill(slot_cell_.get(), slot_cell_.get() + slots_, kNoCell);
+  std::fill(slot_size_.get(), slot_size_.get() + slots_, 0u);
+  std::fill(slot_used_.get(), slot_used_.get() + slots_, std::uint64_t{0});
   result_ = buffer_.get();
 }
 
@@ -332,31 +371,78 @@ void PvsDecoder::clear() noexcept {
   decoded_cell_ = kNoCell;
 }
 
+std::size_t PvsDecoder::find_slot(std::uint32_t cell) const noexcept {
+  if (slots_ == 0 || cell == kNoCell) return slots_;
+  const std::size_t first = set_of(cell, slots_ / ways_) * ways_;
+  for (std::size_t k = first; k < first + ways_; ++k)
+    if (slot_cell_[k] == cell) return k;
+  return slots_;
+}
+
+Status PvsDecoder::fetch(std::uint32_t cell, IndexSpan& out) noexcept {
+  if (file_->pvs_span(cell, out) == Status::kOk) return Status::kOk;
+  if (cell >= file_->cell_count()) return Status::kOutOfRange;
+  if (slots_ == 0) return Status::kOutOfMemory;
+  if (const std::size_t hit = find_slot(cell); hit != slots_) {
+    slot_used_[hit] = ++tick_;
+    out = {slot_data(hit), slot_size_[hit]};
+    return Status::kOk;
+  }
+  // A diff whose reference is cached (in another slot of the cache) is one merge against it.
+  const detail::PvsSection& section = file_->data_->pvs.section;
+  detail::PayloadHeader header;
+  detail::DiffHeader diff;
+  std::size_t reference = slots_;
+  if (slots_ > 1 && detail::read_payload_header(section, cell, header) &&
+      header.kind == format::PvsKind::kDiff &&
+      detail::read_diff_header(section, cell, header, diff))
+    reference = find_slot(diff.reference);
+  // The least recently used slot of the cell's set, but not the reference's, which is read
+  // while the new list is written (with two or more slots, a set has two or more).
+  const std::size_t first = set_of(cell, slots_ / ways_) * ways_;
+  std::size_t victim = slots_;
+  for (std::size_t k = first; k < first + ways_; ++k)
+    if (k != reference && (victim == slots_ || slot_used_[k] < slot_used_[victim])) victim = k;
+  slot_cell_[victim] = kNoCell;
+  std::uint32_t* const list = slot_data(victim);
+  std::size_t count = 0;
+  if (reference != slots_) {
+    // load() checked that every diff merges cleanly with its reference's list.
+    if (!detail::merge_decoded(diff, slot_data(reference), slot_size_[reference], list, capacity_,
+                               count)) {
+      return Status::kMalformedSection;
+    }
+    slot_used_[reference] = ++tick_;
+  } else if (const Status status = file_->decode_pvs(cell, list, capacity_, count);
+             status != Status::kOk) {
+    return status;
+  }
+  slot_cell_[victim] = cell;
+  slot_size_[victim] = static_cast<std::uint32_t>(count);
+  slot_used_[victim] = ++tick_;
+  out = {list, count};
+  return Status::kOk;
+}
+
 Status PvsDecoder::decode(std::uint32_t cell) noexcept {
   // A camera stays in its cell for many frames: the same cell again costs nothing.
   if (cell == decoded_cell_ && cell != kNoCell) return Status::kOk;
+  IndexSpan span;
+  const Status status = fetch(cell, span);
   clear();
-  if (IndexSpan span; file_->pvs_span(cell, span) == Status::kOk) {
+  if (status != Status::kOk) return status;
+  if (file_->is_expanded()) {
     // Expanded file: no copy. A new cell's list is asked for all at once, not line by line as
     // the caller reads it: on a random query that is one wait instead of a stream of them
-    // (Monaco's 1,142 entries per cell: random p50 1.1 -> 0.7 µs), and a camera that stays in
-    // its cell returned above without asking again.
+    // (Monaco's 1,142 entries per cell: random p50 1.1 -> 0.7 µs).
     const auto* line = reinterpret_cast<const unsigned char*>(span.data);
     for (std::size_t b = 0; b < span.size * sizeof(std::uint32_t); b += 64)
       URBANPVS_PREFETCH(line + b);
-    result_ = span.data;
-    size_ = span.size;
-    decoded_cell_ = cell;
-    return Status::kOk;
   }
-  if (!buffer_) return Status::kOutOfMemory;
-  std::size_t count = 0;
-  const Status status = file_->decode_pvs(cell, buffer_.get(), capacity_, count);
-  if (status == Status::kOk) {
-    size_ = count;
-    decoded_cell_ = cell;
-  }
-  return status;
+  result_ = span.data;
+  size_ = span.size;
+  decoded_cell_ = cell;
+  return Status::kOk;
 }
 
 }  // namespace urbanpvs::runtime

@@ -31,16 +31,15 @@ Status PvsDecoder::decode_union(const std::uint32_t* cells, std::size_t n) noexc
     marks_.reset(new (std::nothrow) std::uint32_t[std::max<std::size_t>(words, 1)]());
     if (!marks_) return Status::kOutOfMemory;
   }
-  if (!buffer_ || !reserve_sets(file_->object_count())) return Status::kOutOfMemory;
+  if (!reserve_sets(file_->object_count())) return Status::kOutOfMemory;
   for (std::size_t i = 0; i < n; ++i) {
-    std::size_t count = 0;
-    const Status status = file_->decode_pvs(cells[i], buffer_.get(), capacity_, count);
+    IndexSpan list;
+    const Status status = fetch(cells[i], list);
     if (status != Status::kOk) {
       std::fill(marks_.get(), marks_.get() + words, 0);  // keep "all zero between calls"
       return status;
     }
-    for (std::size_t k = 0; k < count; ++k)
-      marks_[buffer_[k] >> 5] |= std::uint32_t{1} << (buffer_[k] & 31);
+    for (const std::uint32_t o : list) marks_[o >> 5] |= std::uint32_t{1} << (o & 31);
   }
   std::uint32_t* out = sets_.get();
   std::size_t size = 0;
@@ -57,20 +56,22 @@ Status PvsDecoder::decode_union(const std::uint32_t* cells, std::size_t n) noexc
 Status PvsDecoder::decode_delta(std::uint32_t from, std::uint32_t to) noexcept {
   clear();
   if (from >= file_->cell_count() || to >= file_->cell_count()) return Status::kOutOfRange;
-  if (!buffer_) return Status::kOutOfMemory;
   // Layout of the set storage: PVS(from) | entered | left, each at most max_pvs_size().
+  // PVS(from) is copied out of the cache, whose slot fetching `to` may take.
   const std::size_t most = file_->max_pvs_size();
   if (!reserve_sets(3 * most)) return Status::kOutOfMemory;
   std::uint32_t* const before = sets_.get();
   std::uint32_t* const entered = before + most;
   std::uint32_t* const left = entered + most;
-  std::size_t n_before = 0, n_after = 0;
-  Status status = file_->decode_pvs(from, buffer_.get(), capacity_, n_before);
+  IndexSpan list;
+  Status status = fetch(from, list);
   if (status != Status::kOk) return status;
-  std::copy(buffer_.get(), buffer_.get() + n_before, before);
-  status = file_->decode_pvs(to, buffer_.get(), capacity_, n_after);
+  std::copy(list.begin(), list.end(), before);
+  const std::size_t n_before = list.size;
+  status = fetch(to, list);
   if (status != Status::kOk) return status;
-  const std::uint32_t* const after = buffer_.get();
+  const std::uint32_t* const after = list.data;
+  const std::size_t n_after = list.size;
   // One merge of the two sorted lists.
   std::size_t i = 0, j = 0, n_entered = 0, n_left = 0;
   while (i < n_before && j < n_after) {

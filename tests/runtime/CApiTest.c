@@ -121,6 +121,32 @@ int main(int argc, char** argv) {
         URBANPVS_INVALID_ARGUMENT);
   urbanpvs_decoder_destroy(decoder);
   urbanpvs_decoder_destroy(NULL);
+
+  /* A decoder that caches cells: each cell's list, object by object, twice (the second time
+   * from its cache); a cache that cannot be had is refused. */
+  CHECK(urbanpvs_decoder_create_cached(file, 8, &decoder) == URBANPVS_OK && decoder != NULL);
+  {
+    uint32_t c;
+    int round;
+    for (round = 0; round < 2; ++round)
+      for (c = 0; c < urbanpvs_cell_count(file); ++c) {
+        CHECK(urbanpvs_decoder_pvs(decoder, c, &objects, &count) == URBANPVS_OK);
+        CHECK(count == urbanpvs_pvs_size(file, c));
+        for (o = 0, k = 0; o < 120; ++o)
+          if (urbanpvs_is_visible(file, c, o)) {
+            CHECK(k < count && objects[k] == o);
+            ++k;
+          }
+        CHECK(k == count);
+      }
+    CHECK(urbanpvs_decoder_pvs(decoder, c, &objects, &count) == URBANPVS_OUT_OF_RANGE);
+    CHECK(count == 0);
+    CHECK(urbanpvs_decoder_pvs(decoder, 0, NULL, &count) == URBANPVS_INVALID_ARGUMENT);
+  }
+  urbanpvs_decoder_destroy(decoder);
+  decoder = (urbanpvs_decoder*)1;
+  CHECK(urbanpvs_decoder_create_cached(file, (size_t)-1, &decoder) == URBANPVS_OUT_OF_MEMORY &&
+        decoder == NULL);
   urbanpvs_close(file);
   urbanpvs_close(NULL);
   if (failures == 0) printf("C API: all checks passed\n");

@@ -137,9 +137,20 @@ urbanpvs_status urbanpvs_cell(const urbanpvs_file* file, uint32_t cell, double t
  */
 typedef struct urbanpvs_decoder urbanpvs_decoder;
 
-/* A decoder for `file`; *out is NULL on failure. */
+/* A decoder for `file` that keeps the list of the last cell it decoded; *out is NULL on
+ * failure. */
 urbanpvs_status urbanpvs_decoder_create(const urbanpvs_file* file, urbanpvs_decoder** out);
+/* A decoder that keeps the lists of the last `cached_cells` cells it decoded (0 counts as 1):
+ * one per agent when one decoder serves a crowd. It holds about cached_cells x
+ * urbanpvs_decode_buffer_size() x 4 bytes; URBANPVS_OUT_OF_MEMORY when they cannot be had. */
+urbanpvs_status urbanpvs_decoder_create_cached(const urbanpvs_file* file, size_t cached_cells,
+                                               urbanpvs_decoder** out);
 void urbanpvs_decoder_destroy(urbanpvs_decoder* decoder);
+
+/* The PVS of `cell` (ascending), from the decoder's cache when it holds the cell: no copy on a
+ * file opened with URBANPVS_OPEN_EXPAND_PVS. */
+urbanpvs_status urbanpvs_decoder_pvs(urbanpvs_decoder* decoder, uint32_t cell,
+                                     const uint32_t** objects, size_t* count);
 
 /* The objects visible from any of cells[0, n) (ascending, each once): what to prefetch around
  * the camera or along a planned route. n == 0 gives an empty set. */

@@ -3,6 +3,7 @@
 // out of bounds, and a file it accepts must answer every query consistently. Each input is
 // loaded twice: with checksums (what applications do) and without, so mutations reach the
 // structural validation behind the checksums (a hostile file can carry valid checksums).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +28,8 @@ void check(bool ok) {
 
 void exercise_cells(const PvsFile& file) {
   std::vector<std::uint32_t> buffer(file.decode_buffer_size());
+  // A decoder that caches cells decodes a diff as a merge against its cached reference.
+  urbanpvs::runtime::PvsDecoder cached(file, 8);
   const std::uint32_t cells = file.cell_count() < 4096 ? file.cell_count() : 4096;
   for (std::uint32_t c = 0; c < cells; ++c) {
     CellGeometry g;
@@ -41,6 +44,9 @@ void exercise_cells(const PvsFile& file) {
     if (n > 0 && buffer[0] > 0) check(!file.is_visible(c, buffer[0] - 1));
     urbanpvs::runtime::PvsEncodingInfo info;
     check(file.pvs_encoding(c, info) == Status::kOk);
+    if (info.reference != kNoCell) check(cached.decode(info.reference) == Status::kOk);
+    check(cached.decode(c) == Status::kOk && cached.size() == n &&
+          std::equal(cached.begin(), cached.end(), buffer.begin()));
     // The centroid of a non-degenerate cell is inside some cell (maybe a lower-index one).
     const double x = (g.triangle[0].x + g.triangle[1].x + g.triangle[2].x) / 3;
     const double y = (g.triangle[0].y + g.triangle[1].y + g.triangle[2].y) / 3;

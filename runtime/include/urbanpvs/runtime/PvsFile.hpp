@@ -210,12 +210,20 @@ class PvsFile {
   static Status open_data(std::unique_ptr<detail::PvsFileData> data, PvsFile& out,
                           const LoadOptions& options, LoadError* error) noexcept;
 
+  friend class PvsDecoder;  // decodes a diff against its reference's cached list
+
   std::unique_ptr<const detail::PvsFileData> data_;
 };
 
-/// A reusable decoder: owns a buffer of decode_buffer_size() slots, allocated once in the
-/// constructor, so decoding PVSs in a loop allocates nothing. One decoder per thread; the file
-/// must outlive it.
+/// A reusable decoder: owns its buffers, allocated once in the constructor, so decoding PVSs in
+/// a loop allocates nothing. One decoder per thread; the file must outlive it.
+///
+/// It keeps the lists of the last `cached_cells` cells it decoded (least recently used out, in
+/// sets of 16), each in a slot of decode_buffer_size() entries: cached_cells x
+/// decode_buffer_size() x 4 bytes. One slot (the default) serves a camera, which stays in its
+/// cell for many frames. A crowd served by one decoder (agents queried in turn, each in its own
+/// cell) wants a slot per agent; a cell whose diff reference is cached is then decoded as one
+/// merge against it. A file opened with expand_pvs needs no cache: its lists are read in place.
 ///
 /// It also answers what a streaming engine asks (PvsSetOperations.cpp): the union of several
 /// cells' PVSs (prefetching around the camera or along a route) and the delta between two
@@ -224,15 +232,16 @@ class PvsFile {
 /// max_pvs_size() for deltas); later calls allocate nothing.
 class PvsDecoder {
  public:
-  /// Allocates the scratch buffer. If that fails, decode() returns kOutOfMemory.
-  explicit PvsDecoder(const PvsFile& file) noexcept;
+  /// Allocates the cache (at least one slot; 0 counts as 1). If that fails, it tries one slot,
+  /// and without that decode() returns kOutOfMemory.
+  explicit PvsDecoder(const PvsFile& file, std::size_t cached_cells = 1) noexcept;
   ~PvsDecoder();
   PvsDecoder(const PvsDecoder&) = delete;
   PvsDecoder& operator=(const PvsDecoder&) = delete;
 
-  /// Decodes the PVS of `cell`; the result is in view() until the next call. Asking again for
-  /// the cell decoded last returns at once; on an expanded file view() points into the file's
-  /// lists (no copy).
+  /// Decodes the PVS of `cell`; the result is in view() until the next call. A cell still in
+  /// the cache returns at once; on an expanded file view() points into the file's lists (no
+  /// copy).
   Status decode(std::uint32_t cell) noexcept;
   /// The objects visible from any of `cells[0, n)`, ascending and each once, in view() until
   /// the next call. n == 0 gives an empty set. kOutOfRange when a cell is out of range,
@@ -250,6 +259,8 @@ class PvsDecoder {
   const std::uint32_t* begin() const noexcept { return result_; }
   const std::uint32_t* end() const noexcept { return result_ + size_; }
   std::size_t size() const noexcept { return size_; }
+  /// The number of cells the cache holds (0 when its allocation failed).
+  std::size_t cached_cells() const noexcept { return slots_; }
   /// After decode_delta(): the objects that came into view and those that went out of it.
   IndexSpan entered() const noexcept { return entered_; }
   IndexSpan left() const noexcept { return left_; }
@@ -257,10 +268,26 @@ class PvsDecoder {
  private:
   void clear() noexcept;
   bool reserve_sets(std::size_t slots) noexcept;
+  /// The PVS of `cell`: in the file when it is expanded, else in a cache slot (decoded into the
+  /// least recently used one of its set when missing). Valid until the next fetch.
+  Status fetch(std::uint32_t cell, IndexSpan& out) noexcept;
+  /// The cache slot holding `cell`, or slots_ when none does.
+  std::size_t find_slot(std::uint32_t cell) const noexcept;
+  std::uint32_t* slot_data(std::size_t slot) const noexcept {
+    return buffer_.get() + slot * capacity_;
+  }
 
   const PvsFile* file_;
-  std::unique_ptr<std::uint32_t[]> buffer_;
-  std::size_t capacity_ = 0;
+  std::unique_ptr<std::uint32_t[]> buffer_;  ///< slots_ slots of capacity_ entries
+  std::size_t capacity_ = 0;                 ///< decode_buffer_size()
+  std::size_t slots_ = 0;
+  std::size_t ways_ = 1;  ///< slots per set; set s is slots [s * ways_, (s + 1) * ways_)
+  /// Per slot: its cell (kNoCell when empty), its list's size and when it was last used.
+  std::unique_ptr<std::uint32_t[]> slot_cell_;
+  std::unique_ptr<std::uint32_t[]> slot_size_;
+  std::unique_ptr<std::uint64_t[]> slot_used_;
+  std::uint64_t tick_ = 0;
+  std::uint32_t decoded_cell_ = kNoCell;  ///< the cell view() holds after decode(), else none
   const std::uint32_t* result_ = nullptr;
   std::size_t size_ = 0;
   // Storage of unions and deltas (allocated on first use) and the union's marks, one bit per
@@ -269,7 +296,6 @@ class PvsDecoder {
   std::size_t sets_capacity_ = 0;
   std::unique_ptr<std::uint32_t[]> marks_;
   IndexSpan entered_{}, left_{};
-  std::uint32_t decoded_cell_ = kNoCell;  ///< the cell view() holds after decode(), else none
 };
 
 }  // namespace urbanpvs::runtime
