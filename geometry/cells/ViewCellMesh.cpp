@@ -31,6 +31,7 @@
 
 #include "BoxGrid.hpp"
 #include "FreeSpaceTriangulation.hpp"
+#include "RingLocator.hpp"
 #include "WindingNumbers.hpp"
 
 namespace urbanpvs::geometry::detail {
@@ -227,29 +228,6 @@ Point to_point(Vec2 v) {
   return {v.x, v.y};
 }
 
-CGAL::Bounded_side side_of(const Ring& r, const Point& p) {
-  std::vector<Point> pts;
-  pts.reserve(r.size());
-  for (Vec2 v : r) pts.push_back(to_point(v));
-  return CGAL::bounded_side_2(pts.begin(), pts.end(), p, K());
-}
-
-// Exact: strictly inside the outer ring and strictly outside every hole.
-bool strictly_inside(const Polygon& poly, const Point& p) {
-  if (side_of(poly.outer, p) != CGAL::ON_BOUNDED_SIDE) return false;
-  for (const Ring& h : poly.holes)
-    if (side_of(h, p) != CGAL::ON_UNBOUNDED_SIDE) return false;
-  return true;
-}
-
-// Exact: in the closed polygon.
-bool inside_or_on(const Polygon& poly, const Point& p) {
-  if (side_of(poly.outer, p) == CGAL::ON_UNBOUNDED_SIDE) return false;
-  for (const Ring& h : poly.holes)
-    if (side_of(h, p) == CGAL::ON_BOUNDED_SIDE) return false;
-  return true;
-}
-
 // Moves rounded vertices of the output onto the closed free space (see the file comment). The
 // candidates are the points a few ulps away, nearest first; a candidate must keep every incident
 // cell counter-clockwise, so the mesh stays a valid triangulation.
@@ -257,11 +235,21 @@ class Nudger {
  public:
   Nudger(const std::vector<Polygon>& region, const std::vector<const Polygon*>& obstacles,
          FreeSpaceTriangulation& out)
-      : region_(region), obstacles_(obstacles), out_(out) {
+      : out_(out) {
+    // Each polygon is asked only where its box holds the point: a street region is many
+    // polygons, or one of tens of thousands of vertices (RingLocator).
     std::vector<Box2> boxes;
-    boxes.reserve(obstacles.size());
-    for (const Polygon* p : obstacles) boxes.push_back(bounds(*p));
-    grid_ = BoxGrid(boxes, 1.0);
+    for (const Polygon* p : obstacles) {
+      boxes.push_back(bounds(*p));
+      obstacles_.emplace_back(*p);
+    }
+    obstacle_grid_ = BoxGrid(boxes, 1.0);
+    boxes.clear();
+    for (const Polygon& r : region) {
+      boxes.push_back(bounds(r));
+      region_.emplace_back(r);
+    }
+    region_grid_ = BoxGrid(boxes, 1.0);
   }
 
   void run() {
@@ -284,11 +272,12 @@ class Nudger {
   }
 
  private:
+  // In the closed free space: in some region polygon (closed) and strictly inside no obstacle.
   bool acceptable(const Point& p) const {
-    for (std::uint32_t i : grid_.at({p.x(), p.y()}))
-      if (strictly_inside(*obstacles_[i], p)) return false;
-    for (const Polygon& r : region_)
-      if (inside_or_on(r, p)) return true;
+    for (std::uint32_t i : obstacle_grid_.at({p.x(), p.y()}))
+      if (obstacles_[i].strictly_inside(p)) return false;
+    for (std::uint32_t i : region_grid_.at({p.x(), p.y()}))
+      if (region_[i].inside_or_on(p)) return true;
     return false;
   }
 
@@ -327,10 +316,11 @@ class Nudger {
     return false;
   }
 
-  const std::vector<Polygon>& region_;
-  const std::vector<const Polygon*>& obstacles_;
+  std::vector<PolygonLocator> region_;
+  std::vector<PolygonLocator> obstacles_;
   FreeSpaceTriangulation& out_;
-  BoxGrid grid_;
+  BoxGrid region_grid_;
+  BoxGrid obstacle_grid_;
 };
 
 std::vector<Point> ring_points(const Ring& r) {
