@@ -248,12 +248,18 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
   };
   // A centre the horizon's sectors leave open gets the exact sight line: the pixel's own test
   // in the brute-force map. The margin keeps float rounding of that map's heights (a few µm)
-  // from making this one stricter.
+  // from making this one stricter. The horizon's own verdicts take it too: an object whose top
+  // lies a few µm under a wall's shadow plane is hidden exactly, and the horizon said so, where
+  // that map showed it (Delft: one building in four cells).
   constexpr double kSightMargin = 1e-4;
+  auto raised = [&](geometry::Box3 b) {
+    b.zmax += kSightMargin;
+    return b;
+  };
   // The occluder that blocked this sample's last sight line, asked first by the next one.
   std::uint32_t blocker = std::numeric_limits<std::uint32_t>::max();
   auto point_hidden = [&](const SampleHorizon& h, Vec2 p, double top) {
-    if (h.hides_point(p, top)) return true;
+    if (h.hides_point(p, top + kSightMargin)) return true;
     ++c.sight_lines;
     return sight_line_blocked(h.sample(), Vec3{p.x, p.y, top}, tree, scene_.occluders(),
                               kSightMargin, &blocker);
@@ -283,7 +289,8 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
       for (long long ti = r.i0; ti <= r.i1; ti += kTile) {
         const CullMapGrid::PixelRange t{ti, tj, std::min(ti + kTile - 1, r.i1),
                                         std::min(tj + kTile - 1, r.j1)};
-        if (h.hides_as_is({{centre(t.i0, t.j0), centre(t.i1, t.j1)}, box.zmin, box.zmax})) continue;
+        if (h.hides_as_is(raised({{centre(t.i0, t.j0), centre(t.i1, t.j1)}, box.zmin, box.zmax})))
+          continue;
         if (!centres_hidden(h, o, r, t)) return false;
       }
     return true;
@@ -341,7 +348,7 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
         h.add(scene_.horizon_occluder(horizon_ids_[e.id], e.distance));
         ++c.occluders_far_field;
       } else if (e.kind == kObjectNode) {
-        if (!any_asked(run_[e.id]) || h.hides_as_is(node_box(e.id))) continue;
+        if (!any_asked(run_[e.id]) || h.hides_as_is(raised(node_box(e.id)))) continue;
         const BoxQuadtree::Node& n = nodes[e.id];
         for (std::uint32_t k = 0; k < n.count; ++k) {
           const std::uint32_t o = object_tree.items()[n.first + k];
@@ -353,7 +360,7 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
                  static_cast<std::uint32_t>(child));
       } else if (e.kind == kObject) {
         const geometry::Box3 b = centres_box(e.id);
-        if (!h.hides_as_is(b)) push(farthest(h, b.xy), kObjectCentres, e.id);
+        if (!h.hides_as_is(raised(b))) push(farthest(h, b.xy), kObjectCentres, e.id);
       } else if (!points_hidden(h, e.id)) {
         seen_in_sweep_[e.id] = sweep_stamp_;
         seen.push_back(e.id);
