@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace urbanpvs::geometry::detail {
 namespace {
@@ -35,32 +36,33 @@ RingLocator::RingLocator(const Ring& ring) {
   // About two edges a strip for a ring whose edges are short against its height; an edge that
   // spans several strips is filed in each, which the bound on the filed entries caps.
   strips_ = std::clamp<std::size_t>(n / 2, 1, std::size_t{1} << 16);
-  auto entries = [&] {
-    std::size_t total = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double y0 = points_[i].y(), y1 = points_[(i + 1) % n].y();
-      total += strip_of(std::max(y0, y1)) - strip_of(std::min(y0, y1)) + 1;
-    }
-    return total;
+  // The first and last strip of edge i.
+  auto strips_of_edge = [&](std::size_t i) {
+    const double y0 = points_[i].y(), y1 = points_[(i + 1) % n].y();
+    return std::pair{strip_of(std::min(y0, y1)), strip_of(std::max(y0, y1))};
   };
   for (;;) {
     strip_ = ymax_ > ymin_ ? (ymax_ - ymin_) / static_cast<double>(strips_) : 1.0;
-    if (strips_ == 1 || entries() <= 8 * n) break;
+    if (strips_ == 1) break;
+    std::size_t entries = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto [s0, s1] = strips_of_edge(i);
+      entries += s1 - s0 + 1;
+    }
+    if (entries <= 8 * n) break;
     strips_ = std::max<std::size_t>(1, strips_ / 4);
   }
   start_.assign(strips_ + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const double y0 = points_[i].y(), y1 = points_[(i + 1) % n].y();
-    for (std::size_t s = strip_of(std::min(y0, y1)); s <= strip_of(std::max(y0, y1)); ++s)
-      ++start_[s + 1];
+    const auto [s0, s1] = strips_of_edge(i);
+    for (std::size_t s = s0; s <= s1; ++s) ++start_[s + 1];
   }
   for (std::size_t s = 0; s < strips_; ++s) start_[s + 1] += start_[s];
   edges_.resize(start_.back());
   std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) {
-    const double y0 = points_[i].y(), y1 = points_[(i + 1) % n].y();
-    for (std::size_t s = strip_of(std::min(y0, y1)); s <= strip_of(std::max(y0, y1)); ++s)
-      edges_[fill[s]++] = static_cast<std::uint32_t>(i);
+    const auto [s0, s1] = strips_of_edge(i);
+    for (std::size_t s = s0; s <= s1; ++s) edges_[fill[s]++] = static_cast<std::uint32_t>(i);
   }
 }
 

@@ -371,9 +371,13 @@ void PvsDecoder::clear() noexcept {
   decoded_cell_ = kNoCell;
 }
 
+std::size_t PvsDecoder::set_start(std::uint32_t cell) const noexcept {
+  return set_of(cell, slots_ / ways_) * ways_;
+}
+
 std::size_t PvsDecoder::find_slot(std::uint32_t cell) const noexcept {
   if (slots_ == 0 || cell == kNoCell) return slots_;
-  const std::size_t first = set_of(cell, slots_ / ways_) * ways_;
+  const std::size_t first = set_start(cell);
   for (std::size_t k = first; k < first + ways_; ++k)
     if (slot_cell_[k] == cell) return k;
   return slots_;
@@ -399,7 +403,7 @@ Status PvsDecoder::fetch(std::uint32_t cell, IndexSpan& out) noexcept {
     reference = find_slot(diff.reference);
   // The least recently used slot of the cell's set, but not the reference's, which is read
   // while the new list is written (with two or more slots, a set has two or more).
-  const std::size_t first = set_of(cell, slots_ / ways_) * ways_;
+  const std::size_t first = set_start(cell);
   std::size_t victim = slots_;
   for (std::size_t k = first; k < first + ways_; ++k)
     if (k != reference && (victim == slots_ || slot_used_[k] < slot_used_[victim])) victim = k;

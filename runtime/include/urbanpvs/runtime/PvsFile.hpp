@@ -271,6 +271,8 @@ class PvsDecoder {
   /// The PVS of `cell`: in the file when it is expanded, else in a cache slot (decoded into the
   /// least recently used one of its set when missing). Valid until the next fetch.
   Status fetch(std::uint32_t cell, IndexSpan& out) noexcept;
+  /// The first slot of the set `cell` maps to.
+  std::size_t set_start(std::uint32_t cell) const noexcept;
   /// The cache slot holding `cell`, or slots_ when none does.
   std::size_t find_slot(std::uint32_t cell) const noexcept;
   std::uint32_t* slot_data(std::size_t slot) const noexcept {
