@@ -33,8 +33,23 @@ bool wall_cuts(const Vec3& s, const Vec3& p, Vec2 a, Vec2 b, const Occluder& o) 
   return s.z + t * (p.z - s.z) < o.top_at(a + u * e);
 }
 
+// True when p lies inside the solid of `o`: under its top, in its footprint and clear of every
+// wall by a micrometre. A sight line from outside must enter the solid to reach it, whichever
+// way it goes in. This decides the lines that pass exactly through a corner, where the rounding
+// of wall_cuts can put the crossing just beyond the end of both walls that meet there.
+bool inside_solid(const Vec3& p, const Occluder& o) {
+  const Vec2 q{p.x, p.y};
+  if (!(p.z < o.top_at(q)) || !geometry::inside(o.shape, q)) return false;
+  bool clear = true;
+  geometry::for_each_edge(o.shape, [&](Vec2 a, Vec2 b) {
+    clear = clear && geometry::distance_to_segment(q, a, b) > 1e-6;
+  });
+  return clear;
+}
+
 bool blocked_by_walls(const Vec3& s, const Vec3& p, const std::vector<Occluder>& occluders) {
   for (const Occluder& o : occluders) {
+    if (inside_solid(p, o)) return true;
     bool cut = false;
     geometry::for_each_edge(o.shape,
                             [&](Vec2 a, Vec2 b) { cut = cut || wall_cuts(s, p, a, b, o); });

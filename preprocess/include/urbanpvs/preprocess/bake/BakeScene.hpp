@@ -50,7 +50,7 @@ struct BakeOptions {
   /// BAG tile 1.31x faster, the same PVS on every city measured).
   double far_outline_tolerance = 1;
   /// Seen from kFarOutlineRatio × far_outline_tolerance or farther, a cut moves an outline by at
-  /// most 1/60 rad: about 5 of the horizon's 2,048 sectors (SampleHorizon::kBins).
+  /// most 1/60 rad: about 3 of the horizon's 1,024 sectors (SampleHorizon::kBins).
   static constexpr int kFarOutlineRatio = 60;
   /// Occluders are shrunk by this instead of cells.epsilon. Only for tests that must show a
   /// broken bake is caught (urbanpvs-validate); never set it otherwise. [Units: m]
