@@ -337,6 +337,27 @@ TEST(ValidateOptions, OutOfLimitsIsRefused) {
   o = {};
   o.point_spacing = 0;
   EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.viewpoints_per_cell = 0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.viewpoints_per_cell = 1025;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.tightness_cells = 1'000'001;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+}
+
+TEST(ValidateCellTightness, StatisticsOverTheCellsThatSawSomething) {
+  // Ratios 2, 1, 3, 1.5 and one cell that saw nothing.
+  const std::vector<validate::CellTightness> cells{
+      {0, 10, 5}, {1, 3, 3}, {2, 4, 0}, {3, 9, 3}, {4, 6, 4}};
+  const validate::CellTightnessStats t = validate::cell_tightness_stats(cells);
+  EXPECT_EQ(t.cells, 4u);
+  EXPECT_EQ(t.saw_nothing, 1u);
+  EXPECT_DOUBLE_EQ(t.mean, 1.875);
+  EXPECT_DOUBLE_EQ(t.median, 1.5);  // the 2nd of 4 by nearest rank
+  EXPECT_DOUBLE_EQ(t.p90, 3.0);     // the 4th of 4
+  EXPECT_EQ(validate::cell_tightness_stats({}).cells, 0u);
 }
 
 // ---- whole bakes -----------------------------------------------------------------------------
@@ -351,6 +372,48 @@ TEST(Validate, NoMissesOnFlatCity) {
   EXPECT_TRUE(r.misses.empty());
   EXPECT_GT(r.tightness(), 1.0);
   EXPECT_LT(r.tightness(), kFlatTightness);
+}
+
+// issue 18's protocol: the objects seen from any of a cell's viewpoints. More viewpoints per cell
+// draw the same cells and add to the same first viewpoints, so each cell's union only grows, and
+// on a conservative PVS it stays inside the cell's PVS.
+TEST(ValidateCellTightness, MoreViewpointsPerCellSeeASupersetWithinThePvs) {
+  const geometry::City city = generated(3, cities::RoofMode::Flat);
+  const runtime::PvsBake bake = preprocess::bake_city(city, small_bake(city, 1.0, 1.39));
+  runtime::PvsFile file;
+  ASSERT_EQ(runtime::PvsFile::open_owned(runtime::encode(bake), file), runtime::Status::kOk);
+  auto measure = [&](std::size_t per_cell) {
+    validate::ValidationOptions v;
+    v.viewpoints = 0;
+    v.tightness_cells = 30;
+    v.viewpoints_per_cell = per_cell;
+    return validate::validate(city, file, v);
+  };
+  const validate::ValidationReport one = measure(1), eight = measure(8);
+  EXPECT_TRUE(one.misses.empty());
+  EXPECT_TRUE(eight.misses.empty());
+  EXPECT_EQ(one.viewpoints, 30u);
+  EXPECT_EQ(eight.viewpoints, 240u);
+  ASSERT_EQ(one.cells.size(), 30u);
+  ASSERT_EQ(eight.cells.size(), 30u);
+  std::size_t grew = 0;
+  std::vector<std::uint32_t> drawn;
+  for (std::size_t i = 0; i < one.cells.size(); ++i) {
+    EXPECT_EQ(one.cells[i].cell, eight.cells[i].cell);
+    EXPECT_EQ(one.cells[i].pvs, file.pvs_size(one.cells[i].cell));
+    EXPECT_GE(eight.cells[i].seen, one.cells[i].seen);
+    EXPECT_LE(eight.cells[i].seen, eight.cells[i].pvs);
+    grew += eight.cells[i].seen > one.cells[i].seen;
+    drawn.push_back(one.cells[i].cell);
+  }
+  std::sort(drawn.begin(), drawn.end());
+  EXPECT_EQ(std::adjacent_find(drawn.begin(), drawn.end()), drawn.end()) << "a cell drawn twice";
+  EXPECT_GT(grew, 10u);  // not vacuous: most cells see more from eight viewpoints than from one
+  const validate::CellTightnessStats t1 = validate::cell_tightness_stats(one.cells);
+  const validate::CellTightnessStats t8 = validate::cell_tightness_stats(eight.cells);
+  EXPECT_LT(t8.mean, t1.mean);
+  EXPECT_GE(t8.mean, 1.0);
+  std::printf("cell tightness, 1 viewpoint: %.3f, 8 viewpoints: %.3f\n", t1.mean, t8.mean);
 }
 
 TEST(Validate, TightnessBoundFailsAPvsOfEverything) {

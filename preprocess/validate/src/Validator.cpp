@@ -144,7 +144,104 @@ void ValidationOptions::validate() const {
   if (!(point_spacing >= 0.1 && point_spacing <= 1000))
     throw std::invalid_argument("point spacing must be 0.1 .. 1000 m");
   if (!(crack >= 0 && crack <= 1)) throw std::invalid_argument("crack must be 0 .. 1 m");
+  if (tightness_cells > 1'000'000)
+    throw std::invalid_argument("tightness cells must be 0 .. 1000000");
+  if (viewpoints_per_cell < 1 || viewpoints_per_cell > 1024)
+    throw std::invalid_argument("viewpoints per cell must be 1 .. 1024");
 }
+
+CellTightnessStats cell_tightness_stats(const std::vector<CellTightness>& cells) {
+  CellTightnessStats s;
+  std::vector<double> ratios;
+  for (const CellTightness& c : cells) {
+    if (c.seen == 0) {
+      ++s.saw_nothing;
+      continue;
+    }
+    ratios.push_back(double(c.pvs) / double(c.seen));
+    s.mean += ratios.back();
+  }
+  s.cells = ratios.size();
+  if (ratios.empty()) return s;
+  s.mean /= double(ratios.size());
+  std::sort(ratios.begin(), ratios.end());
+  // The nearest rank: the smallest ratio that at least that share of the cells does not exceed.
+  auto rank = [&](double q) {
+    const auto k = static_cast<std::size_t>(std::ceil(q * double(ratios.size())));
+    return ratios[std::max<std::size_t>(k, 1) - 1];
+  };
+  s.median = rank(0.5);
+  s.p90 = rank(0.9);
+  return s;
+}
+
+namespace {
+
+// Looks from viewpoints of cells against the ray scene: what each sees, and the misses.
+class Looker {
+ public:
+  Looker(const geometry::City& city, const RayScene& scene, const ValidationOptions& options,
+         ValidationReport& report)
+      : city_(city), scene_(scene), options_(options), report_(report) {
+    for (const geometry::CityObject& o : city.objects)
+      points_.push_back(target_points(o, options.point_spacing));
+    reach_ = 2 * std::hypot(scene.bounds().max.x - scene.bounds().min.x,
+                            scene.bounds().max.y - scene.bounds().min.y) +
+             1000;
+  }
+
+  /// From v in `cell`, whose PVS is marked in in_pvs: every object missing from the PVS (a miss
+  /// when seen) and, when `measure`, every object in it too, then the objects the rays of a cube
+  /// map meet first. An object marked in `seen` already is not looked at again; one newly seen
+  /// is marked and appended to seen_list.
+  void look(std::uint32_t cell, const Vec3& v, const std::vector<char>& in_pvs, bool measure,
+            std::vector<char>& seen, std::vector<std::uint32_t>& seen_list) {
+    auto record_seen = [&](std::uint32_t o, const Vec3& at) {
+      seen[o] = 1;
+      seen_list.push_back(o);
+      if (!in_pvs[o]) report_.misses.push_back({cell, v, o, city_.objects[o].source_id, at});
+    };
+    for (std::uint32_t o = 0; o < city_.objects.size(); ++o) {
+      if (seen[o] || (in_pvs[o] && !measure)) continue;
+      if (const Vec3* q =
+              first_target_seen(scene_, v, points_[o], o, options_.crack, &report_.rays))
+        record_seen(o, *q);
+    }
+    ++report_.viewpoints;
+    if (!measure) return;
+    // The cube map's rays meet real surfaces: what one meets first is seen there, when the
+    // crack test agrees; absent from the PVS, it is a miss the targets fell between.
+    met_.clear();
+    cube_map_met(scene_, v, options_.cube_resolution, reach_, met_, report_.rays);
+    for (const auto& [o, at] : met_)
+      if (!seen[o] && all_reach(scene_, v, at, o, options_.crack, report_.rays)) record_seen(o, at);
+  }
+
+ private:
+  const geometry::City& city_;
+  const RayScene& scene_;
+  const ValidationOptions& options_;
+  ValidationReport& report_;
+  std::vector<std::vector<Vec3>> points_;
+  double reach_ = 0;
+  std::vector<std::pair<std::uint32_t, Vec3>> met_;
+};
+
+// Distinct random cells, `wanted` of them or all: the first of a random permutation.
+std::vector<std::uint32_t> distinct_cells(std::uint32_t count, std::size_t wanted,
+                                          std::mt19937_64& rng) {
+  std::vector<std::uint32_t> cells(count);
+  for (std::uint32_t c = 0; c < count; ++c) cells[c] = c;
+  const std::size_t n = std::min<std::size_t>(wanted, count);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto j = std::uniform_int_distribution<std::size_t>(i, count - 1)(rng);
+    std::swap(cells[i], cells[j]);
+  }
+  cells.resize(n);
+  return cells;
+}
+
+}  // namespace
 
 ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pvs,
                           const ValidationOptions& options, const TightnessObserver& observer) {
@@ -161,50 +258,31 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
   if (pvs.cell_count() == 0) throw std::runtime_error("the PVS file has no cells");
 
   const RayScene scene(city);
-  std::vector<std::vector<Vec3>> points;
-  for (const geometry::CityObject& o : city.objects)
-    points.push_back(target_points(o, options.point_spacing));
-  const double reach = 2 * std::hypot(scene.bounds().max.x - scene.bounds().min.x,
-                                      scene.bounds().max.y - scene.bounds().min.y) +
-                       1000;
-
   ValidationReport report;
+  Looker looker(city, scene, options, report);
   const double eye_min = pvs.settings().eye_min_m;  // a viewer stands this high on the terrain
-  std::mt19937_64 rng(options.seed);
   runtime::PvsDecoder decoder(pvs);
   std::vector<char> in_pvs(city.objects.size()), seen(city.objects.size());
   std::vector<std::uint32_t> seen_list, pvs_list;
-  std::vector<std::pair<std::uint32_t, Vec3>> met;
-  for (std::size_t n = 0; n < options.viewpoints; ++n) {
-    const auto cell = static_cast<std::uint32_t>(
-        std::uniform_int_distribution<std::uint64_t>(0, pvs.cell_count() - 1)(rng));
-    runtime::CellGeometry geometry;
+  auto open_cell = [&](std::uint32_t cell, runtime::CellGeometry& geometry) {
     pvs.cell(cell, geometry);
-    const Vec3 v = random_viewpoint(geometry, n % 2 == 0, scene, eye_min, rng);
     if (decoder.decode(cell) != runtime::Status::kOk)
       throw std::runtime_error("cannot decode the PVS of cell " + std::to_string(cell));
     std::fill(in_pvs.begin(), in_pvs.end(), 0);
     std::fill(seen.begin(), seen.end(), 0);
-    for (std::uint32_t o : decoder) in_pvs[o] = 1;
-    const bool measure = n < options.tightness_viewpoints;
     seen_list.clear();
-    auto record_seen = [&](std::uint32_t o, const Vec3& at) {
-      seen[o] = 1;
-      seen_list.push_back(o);
-      if (!in_pvs[o]) report.misses.push_back({cell, v, o, city.objects[o].source_id, at});
-    };
-    for (std::uint32_t o = 0; o < city.objects.size(); ++o) {
-      if (in_pvs[o] && !measure) continue;
-      if (const Vec3* q = first_target_seen(scene, v, points[o], o, options.crack, &report.rays))
-        record_seen(o, *q);
-    }
+    for (std::uint32_t o : decoder) in_pvs[o] = 1;
+  };
+  std::mt19937_64 rng(options.seed);
+  for (std::size_t n = 0; n < options.viewpoints; ++n) {
+    const auto cell = static_cast<std::uint32_t>(
+        std::uniform_int_distribution<std::uint64_t>(0, pvs.cell_count() - 1)(rng));
+    runtime::CellGeometry geometry;
+    open_cell(cell, geometry);
+    const Vec3 v = random_viewpoint(geometry, n % 2 == 0, scene, eye_min, rng);
+    const bool measure = n < options.tightness_viewpoints;
+    looker.look(cell, v, in_pvs, measure, seen, seen_list);
     if (measure) {
-      // The cube map's rays meet real surfaces: what one meets first is seen there, when the
-      // crack test agrees; absent from the PVS, it is a miss the targets fell between.
-      met.clear();
-      cube_map_met(scene, v, options.cube_resolution, reach, met, report.rays);
-      for (const auto& [o, at] : met)
-        if (!seen[o] && all_reach(scene, v, at, o, options.crack, report.rays)) record_seen(o, at);
       report.pvs_total += decoder.size();
       report.seen_total += seen_list.size();
       if (observer) {
@@ -212,7 +290,19 @@ ValidationReport validate(const geometry::City& city, const runtime::PvsFile& pv
         observer({cell, v, pvs_list, seen});
       }
     }
-    ++report.viewpoints;
+  }
+  // The cells are drawn first and each has its own stream of viewpoints (from the seed and the
+  // cell), so more viewpoints per cell add to the same first ones: the union only grows.
+  std::mt19937_64 cell_rng(options.seed ^ 0x6a09e667f3bcc909u);
+  for (std::uint32_t cell : distinct_cells(pvs.cell_count(), options.tightness_cells, cell_rng)) {
+    runtime::CellGeometry geometry;
+    open_cell(cell, geometry);
+    std::mt19937_64 viewpoint_rng(options.seed * 0x9e3779b97f4a7c15u + cell);
+    for (std::size_t k = 0; k < options.viewpoints_per_cell; ++k) {
+      const Vec3 v = random_viewpoint(geometry, k % 2 == 0, scene, eye_min, viewpoint_rng);
+      looker.look(cell, v, in_pvs, true, seen, seen_list);
+    }
+    report.cells.push_back({cell, decoder.size(), seen_list.size()});
   }
   return report;
 }

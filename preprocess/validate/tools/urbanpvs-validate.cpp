@@ -10,6 +10,7 @@
 // file does not belong to the city or cannot be read; 10 and above: input errors, with
 // urbanpvs-preprocess's codes (geometry::exit_code).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -35,6 +36,13 @@ int main(int argc, char** argv) {
   app.add_option("--tightness-viewpoints", options.tightness_viewpoints,
                  "Viewpoints that also count the objects seen")
       ->capture_default_str();
+  app.add_option("--tightness-cells", options.tightness_cells,
+                 "Distinct random cells whose tightness is measured over several viewpoints "
+                 "each: |PVS| over the objects seen from any of them (0: off)")
+      ->capture_default_str();
+  app.add_option("--viewpoints-per-cell", options.viewpoints_per_cell,
+                 "Viewpoints of each of the --tightness-cells (1 .. 1024)")
+      ->capture_default_str();
   validate::add_target_options(app, options);
   try {
     app.parse(argc, argv);
@@ -53,14 +61,18 @@ int main(int argc, char** argv) {
         const validate::ValidationReport r = validate::validate(city, file, options);
         std::printf("viewpoints: %zu, rays: %zu, misses: %zu\n", r.viewpoints, r.rays,
                     r.misses.size());
+        const std::size_t measured = std::min(options.viewpoints, options.tightness_viewpoints);
         std::printf(
             "tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
-            r.tightness(),
-            double(r.pvs_total) / double(std::max<std::size_t>(
-                                      1, std::min(r.viewpoints, options.tightness_viewpoints))),
-            double(r.seen_total) / double(std::max<std::size_t>(
-                                       1, std::min(r.viewpoints, options.tightness_viewpoints))),
-            std::min(r.viewpoints, options.tightness_viewpoints));
+            r.tightness(), double(r.pvs_total) / double(std::max<std::size_t>(1, measured)),
+            double(r.seen_total) / double(std::max<std::size_t>(1, measured)), measured);
+        if (!r.cells.empty()) {
+          const validate::CellTightnessStats t = validate::cell_tightness_stats(r.cells);
+          std::printf(
+              "cell tightness: mean %.3f, median %.3f, p90 %.3f over %zu cells x %zu viewpoints "
+              "(|PVS| / objects seen from any of them; %zu cells saw nothing)\n",
+              t.mean, t.median, t.p90, t.cells, options.viewpoints_per_cell, t.saw_nothing);
+        }
         for (std::size_t i = 0; i < r.misses.size() && i < 20; ++i) {
           const validate::Miss& m = r.misses[i];
           std::printf("MISS cell %u viewpoint (%.3f, %.3f, %.3f) sees %s at (%.3f, %.3f, %.3f)\n",

@@ -7,7 +7,8 @@
 // ValidationOptions::crack between blockers are closed (target_seen). It also measures
 // tightness: |PVS| over the number of objects actually seen (the target segments plus a cube
 // map of directions; an object a cube-map ray meets first and that is absent from the PVS is a
-// miss too).
+// miss too): per viewpoint, and per cell over several viewpoints of it (the objects seen from
+// any of them, as an exact from-region PVS would hold them).
 #pragma once
 
 #include <cstdint>
@@ -40,6 +41,12 @@ struct ValidationOptions {
   /// [Limit: 0 .. 1]
   double crack = 0.05;
   std::uint64_t seed = 1;
+  /// Per-cell tightness (issue 18's protocol): this many distinct random cells, each seen from
+  /// viewpoints_per_cell random viewpoints of it; a cell's tightness is |PVS| over the objects
+  /// seen from any of them. Their viewpoints are checked for misses too. 0: off.
+  /// [Limit: 0 .. 1,000,000]
+  std::size_t tightness_cells = 0;
+  std::size_t viewpoints_per_cell = 8;  ///< [Limit: 1 .. 1,024]
 
   /// Throws std::invalid_argument naming the first value out of its limits.
   void validate() const;
@@ -53,6 +60,24 @@ struct Miss {
   Vec3 target;  ///< the point of the object the segments reached
 };
 
+/// One cell of the per-cell tightness: its PVS size and the objects seen from any of its
+/// viewpoints (all in its PVS when it has no miss).
+struct CellTightness {
+  std::uint32_t cell = 0;
+  std::size_t pvs = 0;
+  std::size_t seen = 0;
+};
+
+/// Mean, median and 90th percentile of |PVS| / seen over the cells that saw something; a cell
+/// that saw nothing (open land all round, or only its own ground) has no ratio and is counted
+/// apart.
+struct CellTightnessStats {
+  std::size_t cells = 0;  ///< cells with a ratio
+  std::size_t saw_nothing = 0;
+  double mean = 0, median = 0, p90 = 0;
+};
+CellTightnessStats cell_tightness_stats(const std::vector<CellTightness>& cells);
+
 struct ValidationReport {
   std::size_t viewpoints = 0;
   std::size_t rays = 0;  ///< segments cast (a target seen costs five with a crack > 0)
@@ -60,6 +85,9 @@ struct ValidationReport {
   std::size_t pvs_total = 0;   ///< summed |PVS| over the tightness viewpoints
   std::size_t seen_total = 0;  ///< summed number of objects seen from them
   double tightness() const { return seen_total ? double(pvs_total) / double(seen_total) : 0; }
+  /// The per-cell tightness, in the order the cells were drawn
+  /// (ValidationOptions::tightness_cells).
+  std::vector<CellTightness> cells;
 };
 
 /// What one tightness viewpoint found: its cell's PVS and, per object, whether it was seen.
