@@ -347,7 +347,7 @@ TEST(ValidateOptions, OutOfLimitsIsRefused) {
   EXPECT_THROW(o.validate(), std::invalid_argument);
 }
 
-TEST(ValidateCellTightness, StatisticsOverTheCellsThatSawSomething) {
+TEST(ValidateCellTightness, StatisticsAndCsvOverTheCellsThatSawSomething) {
   // Ratios 2, 1, 3, 1.5 and one cell that saw nothing.
   const std::vector<validate::CellTightness> cells{
       {0, 10, 5}, {1, 3, 3}, {2, 4, 0}, {3, 9, 3}, {4, 6, 4}};
@@ -358,6 +358,9 @@ TEST(ValidateCellTightness, StatisticsOverTheCellsThatSawSomething) {
   EXPECT_DOUBLE_EQ(t.median, 1.5);  // the 2nd of 4 by nearest rank
   EXPECT_DOUBLE_EQ(t.p90, 3.0);     // the 4th of 4
   EXPECT_EQ(validate::cell_tightness_stats({}).cells, 0u);
+  EXPECT_EQ(validate::cell_tightness_csv(cells),
+            "cell,pvs,seen,tightness\n0,10,5,2.0000\n1,3,3,1.0000\n2,4,0,\n3,9,3,3.0000\n"
+            "4,6,4,1.5000\n");
 }
 
 // ---- whole bakes -----------------------------------------------------------------------------

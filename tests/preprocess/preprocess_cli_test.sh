@@ -109,6 +109,26 @@ threads)
   grep -q 'property:    region = region.geojson' summary.txt || fail "region not in the metadata"
   "$validate" city.city.json one.pvs --viewpoints 400 --tightness-viewpoints 50 ||
     fail "urbanpvs-validate found misses (or failed)"
+  # Per-cell tightness: a summary line and one CSV row per cell drawn, each PVS as the file's.
+  "$validate" city.city.json one.pvs --viewpoints 0 --tightness-cells 12 \
+    --viewpoints-per-cell 4 --cells-csv cells.csv > cells.txt || fail "per-cell validation failed"
+  grep -q '^cell tightness: mean .* cells x 4 viewpoints' cells.txt ||
+    fail "no per-cell summary: $(cat cells.txt)"
+  [ "$(head -1 cells.csv)" = "cell,pvs,seen,tightness" ] || fail "CSV header: $(head -1 cells.csv)"
+  [ "$(wc -l < cells.csv)" -eq 13 ] || fail "CSV rows: $(cat cells.csv)"
+  while IFS=, read -r cell pvs seen ratio; do
+    [ "$cell" = cell ] && continue
+    "$inspect" one.pvs --cell "$cell" > cell.txt
+    grep -q "^  pvs: $pvs of " cell.txt ||
+      fail "cell $cell: the CSV says $pvs objects, inspect says $(cat cell.txt)"
+    [ "$seen" -le "$pvs" ] || fail "cell $cell sees $seen objects, more than its PVS of $pvs"
+  done < cells.csv
+  rc=0
+  "$validate" city.city.json one.pvs --viewpoints 0 --tightness-cells 2 \
+    --cells-csv missing/dir/cells.csv > /dev/null 2> stderr.txt || rc=$?
+  [ "$rc" = 5 ] || fail "unwritable --cells-csv: exit $rc, expected 5: $(cat stderr.txt)"
+  grep -q 'missing/dir/cells.csv' stderr.txt || fail "the message lacks the path: $(cat stderr.txt)"
+  absent missing
   # Without --quiet: the summary names cells, PVS sizes and stage times.
   "$preprocess" city.city.json --max-cell-edge 40 --epsilon 3 --region region.geojson \
     -o three.pvs 2> stderr.txt

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
 
@@ -173,6 +174,18 @@ CellTightnessStats cell_tightness_stats(const std::vector<CellTightness>& cells)
   s.median = rank(0.5);
   s.p90 = rank(0.9);
   return s;
+}
+
+std::string cell_tightness_csv(const std::vector<CellTightness>& cells) {
+  std::string out = "cell,pvs,seen,tightness\n";
+  char ratio[32];
+  for (const CellTightness& c : cells) {
+    ratio[0] = '\0';
+    if (c.seen > 0) std::snprintf(ratio, sizeof ratio, "%.4f", double(c.pvs) / double(c.seen));
+    out += std::to_string(c.cell) + ',' + std::to_string(c.pvs) + ',' + std::to_string(c.seen) +
+           ',' + ratio + '\n';
+  }
+  return out;
 }
 
 namespace {

@@ -7,8 +7,8 @@
 // anywhere in its box. Targets are points over all surfaces (--point-spacing); cracks narrower
 // than --crack are closed. From the PVS file only its object ids, cells and PVSs are read.
 // Exit 0: no miss; 1: misses found (listed); 2: usage (an option out of its limits too); 4: the
-// file does not belong to the city or cannot be read; 10 and above: input errors, with
-// urbanpvs-preprocess's codes (geometry::exit_code).
+// file does not belong to the city or cannot be read; 5: the --cells-csv file cannot be written;
+// 10 and above: input errors, with urbanpvs-preprocess's codes (geometry::exit_code).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -17,6 +17,7 @@
 #include "urbanpvs/geometry/city/ReadSettings.hpp"
 #include "urbanpvs/geometry/settings/SettingOptions.hpp"
 #include "urbanpvs/runtime/ExitCodes.hpp"
+#include "urbanpvs/runtime/FileIo.hpp"
 #include "urbanpvs/validate/ValidationCommand.hpp"
 
 int main(int argc, char** argv) {
@@ -43,6 +44,9 @@ int main(int argc, char** argv) {
   app.add_option("--viewpoints-per-cell", options.viewpoints_per_cell,
                  "Viewpoints of each of the --tightness-cells (1 .. 1024)")
       ->capture_default_str();
+  std::string cells_file;
+  app.add_option("--cells-csv", cells_file,
+                 "Write each of the --tightness-cells to this CSV file: cell,pvs,seen,tightness");
   validate::add_target_options(app, options);
   try {
     app.parse(argc, argv);
@@ -62,16 +66,26 @@ int main(int argc, char** argv) {
         std::printf("viewpoints: %zu, rays: %zu, misses: %zu\n", r.viewpoints, r.rays,
                     r.misses.size());
         const std::size_t measured = std::min(options.viewpoints, options.tightness_viewpoints);
-        std::printf(
-            "tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
-            r.tightness(), double(r.pvs_total) / double(std::max<std::size_t>(1, measured)),
-            double(r.seen_total) / double(std::max<std::size_t>(1, measured)), measured);
+        if (measured > 0) {
+          std::printf(
+              "tightness:  %.3f (mean |PVS| %.1f / mean objects seen %.1f over %zu viewpoints)\n",
+              r.tightness(), double(r.pvs_total) / double(measured),
+              double(r.seen_total) / double(measured), measured);
+        }
         if (!r.cells.empty()) {
           const validate::CellTightnessStats t = validate::cell_tightness_stats(r.cells);
           std::printf(
               "cell tightness: mean %.3f, median %.3f, p90 %.3f over %zu cells x %zu viewpoints "
               "(|PVS| / objects seen from any of them; %zu cells saw nothing)\n",
               t.mean, t.median, t.p90, t.cells, options.viewpoints_per_cell, t.saw_nothing);
+        }
+        if (!cells_file.empty()) {
+          try {
+            runtime::write_file_atomic(cells_file, validate::cell_tightness_csv(r.cells));
+          } catch (const runtime::FileWriteError& e) {
+            std::fprintf(stderr, "urbanpvs-validate: %s\n", e.what());
+            return exit_code::kOutput;
+          }
         }
         for (std::size_t i = 0; i < r.misses.size() && i < 20; ++i) {
           const validate::Miss& m = r.misses[i];

@@ -78,6 +78,10 @@ struct CellTightnessStats {
 };
 CellTightnessStats cell_tightness_stats(const std::vector<CellTightness>& cells);
 
+/// The cells as CSV: cell,pvs,seen,tightness per line, in the order they were drawn; the
+/// tightness is empty for a cell that saw nothing.
+std::string cell_tightness_csv(const std::vector<CellTightness>& cells);
+
 struct ValidationReport {
   std::size_t viewpoints = 0;
   std::size_t rays = 0;  ///< segments cast (a target seen costs five with a crack > 0)
