@@ -243,6 +243,7 @@ class Looker {
 // Distinct random cells, `wanted` of them or all: the first of a random permutation.
 std::vector<std::uint32_t> distinct_cells(std::uint32_t count, std::size_t wanted,
                                           std::mt19937_64& rng) {
+  if (wanted == 0) return {};
   std::vector<std::uint32_t> cells(count);
   for (std::uint32_t c = 0; c < count; ++c) cells[c] = c;
   const std::size_t n = std::min<std::size_t>(wanted, count);

@@ -83,6 +83,7 @@ CellTightnessStats cell_tightness_stats(const std::vector<CellTightness>& cells)
 std::string cell_tightness_csv(const std::vector<CellTightness>& cells);
 
 struct ValidationReport {
+  /// Viewpoints checked for misses: the random ones and those of the tightness cells.
   std::size_t viewpoints = 0;
   std::size_t rays = 0;  ///< segments cast (a target seen costs five with a crack > 0)
   std::vector<Miss> misses;
