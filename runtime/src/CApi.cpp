@@ -110,6 +110,11 @@ uint32_t urbanpvs_locate(const urbanpvs_file* file, double x, double y, double z
   return file != nullptr ? file->file.locate(x, y, z) : URBANPVS_NO_CELL;
 }
 
+uint32_t urbanpvs_locate_from(const urbanpvs_file* file, uint32_t hint, double x, double y,
+                              double z) {
+  return file != nullptr ? file->file.locate_from(hint, x, y, z) : URBANPVS_NO_CELL;
+}
+
 urbanpvs_status urbanpvs_input_to_local(const urbanpvs_file* file, double xyz[3]) {
   if (file == nullptr || xyz == nullptr) return URBANPVS_INVALID_ARGUMENT;
   const auto local = file->file.input_to_local(xyz[0], xyz[1], xyz[2]);

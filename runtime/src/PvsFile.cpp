@@ -248,6 +248,19 @@ std::uint32_t PvsFile::locate_xy(double x, double y) const noexcept {
   return data_ ? locate_in(*data_, x, y, 0, false) : kNoCell;
 }
 
+std::uint32_t PvsFile::locate_from(std::uint32_t hint, double x, double y,
+                                   double z) const noexcept {
+  if (!data_) return kNoCell;
+  const detail::PvsFileData& f = *data_;
+  // holds() rejects NaN z by its range test, and a non-finite x or y by the triangle's box.
+  if (hint < f.cells.count) {
+    if (holds(f.cells.shapes[hint], x, y, z, true)) return hint;
+    for (const std::uint32_t n : f.cells.neighbours[hint])
+      if (n < f.cells.count && holds(f.cells.shapes[n], x, y, z, true)) return n;
+  }
+  return locate_in(f, x, y, z, true);
+}
+
 std::uint32_t PvsFile::pvs_size(std::uint32_t cell) const noexcept {
   if (IndexSpan span; pvs_span(cell, span) == Status::kOk)
     return static_cast<std::uint32_t>(span.size);

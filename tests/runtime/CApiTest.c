@@ -48,6 +48,12 @@ int main(int argc, char** argv) {
   cell = urbanpvs_locate(file, 12.0, 2.0, 1.75);
   CHECK(cell == 2);
   CHECK(urbanpvs_locate(file, 100.0, 2.0, 1.75) == URBANPVS_NO_CELL);
+  /* From a hint: the hint when it holds the point, else what holds it, else nothing. */
+  CHECK(urbanpvs_locate_from(file, 2, 12.0, 2.0, 1.75) == 2);
+  CHECK(urbanpvs_locate_from(file, 0, 12.0, 2.0, 1.75) == 2);
+  CHECK(urbanpvs_locate_from(file, URBANPVS_NO_CELL, 12.0, 2.0, 1.75) == 2);
+  CHECK(urbanpvs_locate_from(file, 2, 100.0, 2.0, 1.75) == URBANPVS_NO_CELL);
+  CHECK(urbanpvs_locate_from(NULL, 2, 12.0, 2.0, 1.75) == URBANPVS_NO_CELL);
   CHECK(urbanpvs_geodetic_to_local(file, 52.0, 4.0, 0.0, local) == URBANPVS_NOT_GEOGRAPHIC);
 
   buffer = (uint32_t*)malloc(urbanpvs_decode_buffer_size(file) * sizeof *buffer);

@@ -45,6 +45,16 @@ rt::PvsBake stored(rt::PvsBake bake, const rt::PvsFile& file) {
   return bake;
 }
 
+/// A jittered mesh of 24 x 17 squares of 7.5 m (cells about 5 m across).
+urbanpvs::test::RandomBakeOptions mesh_options() {
+  urbanpvs::test::RandomBakeOptions o;
+  o.nx = 24;
+  o.ny = 17;
+  o.square = 7.5;
+  o.objects = 10;
+  return o;
+}
+
 /// A format version, and whether the file is loaded with its PVSs expanded: locate() then reads
 /// the shapes from the expanded records instead of the cell table (LocateIndex.hpp).
 using Params = std::tuple<std::uint16_t, bool>;
@@ -67,11 +77,7 @@ class Locate : public ::testing::TestWithParam<Params> {
 };
 
 TEST_P(Locate, MeshAgreesWithBruteForceIncludingEdgesAndVertices) {
-  urbanpvs::test::RandomBakeOptions o;
-  o.nx = 24;
-  o.ny = 17;
-  o.square = 7.5;
-  o.objects = 10;
+  const urbanpvs::test::RandomBakeOptions o = mesh_options();
   const auto bytes = rt::encode(urbanpvs::test::random_mesh_bake(2024, o), options());
   const rt::PvsFile file = open(bytes);
   const rt::PvsBake bake = stored(urbanpvs::test::random_mesh_bake(2024, o), file);
@@ -153,6 +159,106 @@ TEST_P(Locate, NonFiniteAndFarPointsAreOutside) {
   EXPECT_EQ(file.locate(-1e300, 1e300, 0), rt::kNoCell);
   EXPECT_NE(file.locate_xy(cx, cy), rt::kNoCell);
   EXPECT_EQ(file.locate_xy(cx, nan), rt::kNoCell);
+}
+
+/// The contract of locate_from() for one point and hint: a cell whose prism holds the point
+/// (none only when none does), the hint when it holds it, else the first neighbour that does,
+/// else locate()'s answer.
+void expect_located_from(const rt::PvsFile& file, const rt::PvsBake& bake, std::uint32_t hint,
+                         double x, double y, double z) {
+  const std::uint32_t got = file.locate_from(hint, x, y, z);
+  auto holds = [&](std::uint32_t c) {
+    const rt::CellRecord& cell = bake.cells[c];
+    return z >= cell.z_min && z <= cell.z_max && rt::triangle_contains(cell.triangle, x, y);
+  };
+  std::uint32_t want = rt::kNoCell;
+  if (hint < bake.cells.size()) {
+    if (holds(hint)) {
+      want = hint;
+    } else {
+      rt::CellGeometry g;
+      ASSERT_EQ(file.cell(hint, g), rt::Status::kOk);
+      for (const std::uint32_t n : g.neighbours)
+        if (want == rt::kNoCell && n != rt::kNoCell && holds(n)) want = n;
+    }
+  }
+  if (want == rt::kNoCell) want = brute_force(bake, x, y, z, true);
+  ASSERT_EQ(got, want) << "hint " << hint << " at " << x << " " << y << " " << z;
+  if (got != rt::kNoCell) {
+    ASSERT_TRUE(holds(got));
+  }
+}
+
+TEST_P(Locate, FromAHintKeepsTheHintThenTriesItsNeighboursThenTheGrid) {
+  const urbanpvs::test::RandomBakeOptions o = mesh_options();
+  const auto bytes = rt::encode(urbanpvs::test::random_mesh_bake(2025, o), options());
+  const rt::PvsFile file = open(bytes);
+  const rt::PvsBake bake = stored(urbanpvs::test::random_mesh_bake(2025, o), file);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1), step(-1.5, 1.5), t(0.01, 0.99);
+  // A walker that takes steps of up to 1.5 m in x and y (cells are about 5 m across: it stays,
+  // crosses into a neighbour or beyond it), now and then jumps onto an edge or a vertex or out
+  // of its z range, and is sometimes given another hint than its last cell.
+  double x = 0.5 * o.nx * o.square, y = 0.5 * o.ny * o.square;
+  std::uint32_t last = file.locate_xy(x, y);
+  std::size_t kept = 0, moved = 0;
+  for (int i = 0; i < 60000; ++i) {
+    const rt::CellRecord& c = bake.cells[rng() % bake.cells.size()];
+    const int k = static_cast<int>(rng() % 3);
+    const rt::Point2 a = c.triangle[k], b = c.triangle[(k + 1) % 3];
+    if (i % 50 == 0) {  // onto an edge
+      const double s = t(rng);
+      x = a.x + s * (b.x - a.x);
+      y = a.y + s * (b.y - a.y);
+    } else if (i % 50 == 1) {  // onto a vertex
+      x = a.x;
+      y = a.y;
+    } else {
+      x += step(rng);
+      y += step(rng);
+    }
+    // Mostly at eye height over the ground at (x, y) (the cells' z bands differ), sometimes in
+    // the band of the last cell or anywhere.
+    const std::uint32_t under = brute_force(bake, x, y, 0, false);
+    const std::uint32_t band = i % 7 == 0 ? last : under;
+    const double z =
+        (i % 13 == 0 || band >= bake.cells.size())
+            ? -1.0 + 8 * u(rng)
+            : bake.cells[band].z_min + u(rng) * (bake.cells[band].z_max - bake.cells[band].z_min);
+    std::uint32_t hint = last;
+    if (i % 17 == 0) hint = static_cast<std::uint32_t>(rng() % bake.cells.size());
+    if (i % 19 == 0) hint = rt::kNoCell;
+    if (i % 23 == 0) hint = static_cast<std::uint32_t>(bake.cells.size() + 3);
+    ASSERT_NO_FATAL_FAILURE(expect_located_from(file, bake, hint, x, y, z));
+    const std::uint32_t got = file.locate_from(hint, x, y, z);
+    kept += got != rt::kNoCell && got == hint;
+    moved += got != rt::kNoCell && got != hint && hint < bake.cells.size();
+    if (got != rt::kNoCell) last = got;
+    if (x < -5 || y < -5 || x > o.nx * o.square + 5 || y > o.ny * o.square + 5) {
+      x = 0.5 * o.nx * o.square;
+      y = 0.5 * o.ny * o.square;
+      last = file.locate_xy(x, y);
+    }
+  }
+  // Both branches are taken often: staying in the cell and leaving it.
+  EXPECT_GT(kept, 10000u);
+  EXPECT_GT(moved, 10000u);
+  // Overlapping cells: the answer is still a cell that holds the point.
+  const rt::PvsBake soup = urbanpvs::test::random_soup_bake(78, 300, 150);
+  const auto soup_bytes = rt::encode(soup, options());
+  const rt::PvsFile soup_file = open(soup_bytes);
+  const rt::PvsBake stored_soup = stored(soup, soup_file);
+  std::uniform_real_distribution<double> p(-30, 180), pz(-6, 10);
+  for (int i = 0; i < 20000; ++i) {
+    const auto hint = static_cast<std::uint32_t>(rng() % (soup.cells.size() + 1));
+    ASSERT_NO_FATAL_FAILURE(expect_located_from(soup_file, stored_soup,
+                                                hint == soup.cells.size() ? rt::kNoCell : hint,
+                                                p(rng), p(rng), pz(rng)));
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(file.locate_from(0, nan, 1, 0.5), rt::kNoCell);
+  EXPECT_EQ(file.locate_from(0, 1, 1, nan), rt::kNoCell);
+  EXPECT_EQ(rt::PvsFile().locate_from(0, 1, 1, 0.5), rt::kNoCell);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryVersion, Locate,

@@ -82,6 +82,12 @@ uint32_t urbanpvs_cell_count(const urbanpvs_file* file);
  * z must be inside the cell's z range; ties go to the lowest cell index). */
 uint32_t urbanpvs_locate(const urbanpvs_file* file, double x, double y, double z);
 
+/* urbanpvs_locate for a point that moves (see PvsFile::locate_from): `hint` is the cell it was
+ * in; that cell when its prism contains the point, else a neighbour's that does, else
+ * urbanpvs_locate. URBANPVS_NO_CELL as the hint: urbanpvs_locate. */
+uint32_t urbanpvs_locate_from(const urbanpvs_file* file, uint32_t hint, double x, double y,
+                              double z);
+
 /* Input coordinates (the input CRS, or ENU for geographic inputs) -> local: subtracts the
  * stored origin. xyz[3] is read and overwritten. */
 urbanpvs_status urbanpvs_input_to_local(const urbanpvs_file* file, double xyz[3]);

@@ -45,6 +45,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "consumer: cell %u has no neighbour to walk to\n", cell);
     return 1;
   }
+  // The camera steps to the middle of that cell: located from the cell it was in.
+  rt::CellGeometry there;
+  if (file.cell(next, there) != rt::Status::kOk) return 1;
+  const double mx = (there.triangle[0].x + there.triangle[1].x + there.triangle[2].x) / 3;
+  const double my = (there.triangle[0].y + there.triangle[1].y + there.triangle[2].y) / 3;
+  if (file.locate_from(cell, mx, my, 0.5 * (there.z_min + there.z_max)) != next) return 1;
   const std::size_t before = visible.size();
   rt::PvsDecoder stream(file);
   if (stream.decode_delta(cell, next) != rt::Status::kOk) return 1;

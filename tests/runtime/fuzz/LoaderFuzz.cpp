@@ -53,6 +53,16 @@ void exercise_cells(const PvsFile& file) {
     const std::uint32_t found = file.locate(x, y, g.z_min);
     check(found == kNoCell || found < file.cell_count());
     check(file.locate_xy(x, y) == kNoCell || file.locate_xy(x, y) < file.cell_count());
+    // From a hint (this cell, a neighbour, none, out of range): none, or a cell whose prism
+    // holds the point; the hint itself when the hint is locate()'s answer.
+    for (const std::uint32_t hint : {c, g.neighbours[0], kNoCell, file.cell_count() + 7}) {
+      const std::uint32_t from = file.locate_from(hint, x, y, g.z_min);
+      if (from == kNoCell) continue;
+      urbanpvs::runtime::CellGeometry h;
+      check(file.cell(from, h) == Status::kOk && g.z_min >= h.z_min && g.z_min <= h.z_max &&
+            urbanpvs::runtime::triangle_contains(h.triangle, x, y));
+    }
+    if (found != kNoCell) check(file.locate_from(found, x, y, g.z_min) == found);
   }
   check(file.locate(std::nan(""), 0, 0) == kNoCell);
   // Set operations across neighbours: sizes add up, every entry is in range.

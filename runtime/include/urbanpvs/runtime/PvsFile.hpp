@@ -178,6 +178,15 @@ class PvsFile {
   std::uint32_t locate(double x, double y, double z) const noexcept;
   /// As locate() but ignoring z (the lowest-index cell whose triangle contains (x, y)).
   std::uint32_t locate_xy(double x, double y) const noexcept;
+  /// locate() for a point that moves: `hint` is the cell it was in (the last answer). The hint
+  /// cell when its prism contains (x, y, z); else the first of its neighbours whose prism does;
+  /// else locate(). So the answer is always a cell whose prism contains the point, or kNoCell
+  /// when none does; it differs from locate() only where several prisms contain the point (on
+  /// a shared edge or vertex the camera keeps its cell instead of flickering to the lower
+  /// index). A walking camera or an agent stays in its cell for many frames and then crosses
+  /// into a neighbour: one or a few triangle tests on lines already in cache, no grid lookup.
+  /// hint == kNoCell or out of range: locate(). Non-finite input → kNoCell.
+  std::uint32_t locate_from(std::uint32_t hint, double x, double y, double z) const noexcept;
 
   /// Number of objects visible from `cell` (0 when out of range). O(1).
   std::uint32_t pvs_size(std::uint32_t cell) const noexcept;
