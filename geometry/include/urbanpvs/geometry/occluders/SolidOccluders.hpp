@@ -59,7 +59,9 @@ bool solid_shrinking_available();
 /// than 0.1 mm are one (so a slit narrower than that is closed); a column may come within
 /// 1e-7 m of the outside, and a level stand 1e-7 m above the solid; outside space lying wholly
 /// within 1 cm above ground_z holds no column down; an open loop of edges within 25 cm above
-/// ground_z is closed as the solid's bottom.
+/// ground_z is closed as the solid's bottom; where the faces close no volume as given (a roof
+/// that overhangs its walls), a face is cut along other faces' edges whose ends lie within 5 mm
+/// of its plane, and a vertex within 5 mm of an edge splits it, so a face may bend by 5 mm.
 ShrunkSolid shrink_solid(const std::vector<Surface3>& surfaces, double ground_z, double epsilon,
                          double step);
 
