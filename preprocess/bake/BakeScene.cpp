@@ -88,10 +88,17 @@ BakeScene::BakeScene(const geometry::City& city, const BakeOptions& options, uns
   for (geometry::Occluder& o : geometry::terrain_occluders(city.terrain, city.bounds().xy,
                                                            options_.blocks.terrain_step, shrink))
     occluders_.push_back(std::move(o));
-  if (const double side = options_.blocks.terrain_planes; side > 0)
+  if (const double side = options_.blocks.terrain_planes; side > 0) {
+    terrain_squares_.first = static_cast<std::uint32_t>(occluders_.size());
     for (geometry::Occluder& o :
          geometry::terrain_plane_occluders(city.terrain, city.bounds().xy, side, shrink))
       occluders_.push_back(std::move(o));
+    terrain_squares_.second = static_cast<std::uint32_t>(occluders_.size());
+    terrain_pyramid_ = TerrainPyramid(
+        std::span(occluders_)
+            .subspan(terrain_squares_.first, terrain_squares_.second - terrain_squares_.first),
+        side);
+  }
   // Roof faces above the blocks' levels, with their slopes (thesis 4.2.1, 7.4): not fused, as a
   // face's plane holds only over its own ground.
   for (geometry::Occluder& o :

@@ -53,8 +53,11 @@ void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uin
 
 }  // namespace
 
-FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops tops)
-    : scene_(scene), seen_in_sweep_(scene.city().objects.size(), 0) {
+FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops tops,
+                   TerrainHorizon terrain)
+    : scene_(scene),
+      terrain_(terrain == TerrainHorizon::Pyramid ? &scene.terrain_pyramid() : nullptr),
+      seen_in_sweep_(scene.city().objects.size(), 0) {
   const std::size_t objects = scene.city().objects.size();
   const std::size_t words = (objects + 63) / 64;
   const std::size_t bytes = std::max<std::size_t>(1, 2 * words * sizeof(std::uint64_t));
@@ -68,6 +71,7 @@ FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops
   ask_.assign(words, 0);
   std::vector<geometry::Box3> horizon_boxes;
   for (std::uint32_t o = 0; o < scene.occluders().size(); ++o) {
+    if (terrain_ && scene.is_terrain_square(o)) continue;  // taken from the pyramid
     const Vec2 slope = scene.occluders()[o].slope;
     if (tops == HorizonTops::AllButSteep && std::hypot(slope.x, slope.y) >= kSteepTop) continue;
     horizon_ids_.push_back(o);
@@ -224,7 +228,8 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
   ++c.sample_sweeps;
   // An object is met at its nearest distance; when its box is not hidden as a whole, again at
   // its farthest, when every wall in front of any of its pixel centres has been added.
-  enum Kind : std::uint32_t { kNode, kOccluder, kObjectNode, kObject, kObjectCentres };
+  // Occluders before objects at one distance; kObjectNode and after are the objects' events.
+  enum Kind : std::uint32_t { kNode, kOccluder, kTerrain, kObjectNode, kObject, kObjectCentres };
   // A min-heap; ties broken by kind and id so the sweep does not depend on the heap's layout.
   auto later = [](const Event& a, const Event& b) {
     return std::tie(a.distance, a.kind, a.id) > std::tie(b.distance, b.kind, b.id);
@@ -322,16 +327,20 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
     auto push = [&](double d, Kind kind, std::uint32_t id) {
       heap.push_back({d, kind, id});
       std::push_heap(heap.begin(), heap.end(), later);
-      if (kind != kNode && kind != kOccluder) ++object_events;
+      if (kind >= kObjectNode) ++object_events;
     };
     push(h.distance_to(node_box(0).xy), kObjectNode, 0);
     if (!horizon_tree_.nodes().empty())
       push(h.distance_to(horizon_tree_.nodes()[0].box.xy), kNode, 0);
+    static const TerrainPyramid kNoTerrain;
+    const TerrainPyramid& terrain = terrain_ ? *terrain_ : kNoTerrain;
+    for (const std::uint32_t root : terrain.roots())
+      push(h.distance_to(terrain.nodes()[root].box.xy), kTerrain, root);
     while (object_events > 0 && !heap.empty()) {
       std::pop_heap(heap.begin(), heap.end(), later);
       const Event e = heap.back();
       heap.pop_back();
-      if (e.kind != kNode && e.kind != kOccluder) --object_events;
+      if (e.kind >= kObjectNode) --object_events;
       if (e.kind == kNode) {
         const BoxQuadtree::Node& n = horizon_tree_.nodes()[e.id];
         if (h.hides(n.box)) continue;
@@ -347,6 +356,20 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
         if (h.hides(horizon_tree_.box(e.id))) continue;
         h.add(scene_.horizon_occluder(horizon_ids_[e.id], e.distance));
         ++c.occluders_far_field;
+      } else if (e.kind == kTerrain) {
+        // A square of the terrain, whole or split into its four as the sweep comes nearer than
+        // kSplitRatio sides: the coarse one lies under its children, so it only hides less.
+        const TerrainPyramid::Node& n = terrain.nodes()[e.id];
+        if (h.hides(n.box)) continue;
+        if (!terrain.split(n, e.distance)) {
+          h.add(n.occluder);
+          ++c.occluders_far_field;
+          continue;
+        }
+        for (const std::int32_t child : n.child) {
+          const auto k = static_cast<std::uint32_t>(child);
+          push(h.distance_to(terrain.nodes()[k].box.xy), kTerrain, k);
+        }
       } else if (e.kind == kObjectNode) {
         if (!any_asked(run_[e.id]) || h.hides_as_is(raised(node_box(e.id)))) continue;
         const BoxQuadtree::Node& n = nodes[e.id];

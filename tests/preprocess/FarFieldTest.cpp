@@ -10,9 +10,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <random>
 
+#include "HillyCity.hpp"
 #include "SlopedLod2City.hpp"
 #include "urbanpvs/cities/CityGenerator.hpp"
 #include "urbanpvs/cities/CityJsonWriter.hpp"
@@ -176,6 +178,138 @@ TEST(FarField, SteepTopsLeftOutOfTheHorizonsGiveTheSameObjectsWithFewerWalls) {
   EXPECT_EQ(lean_counts.sample_sweeps, full_counts.sample_sweeps);
   // The walls left out: a quarter of those the full horizons add, or more.
   EXPECT_LT(lean_counts.occluders_far_field, full_counts.occluders_far_field * 3 / 4);
+}
+
+// A hilly city whose terrain occludes as sloped squares of 8 m: 0.25 km², so that the far
+// field meets squares merged up to several levels.
+const BakeScene& hilly_scene() {
+  static const geometry::City city = generated_hilly_city(0.25, 60);
+  static const BakeScene s = [] {
+    BakeOptions o;
+    o.blocks.terrain_planes = 8;
+    return BakeScene(city, o);
+  }();
+  return s;
+}
+
+TEST(TerrainPyramid, EveryNodeLiesUnderTheSquaresItCoversAndEachSquareHasOneRoot) {
+  const BakeScene& s = hilly_scene();
+  const TerrainPyramid& pyramid = s.terrain_pyramid();
+  const auto& nodes = pyramid.nodes();
+  std::vector<const geometry::Occluder*> squares;
+  for (std::uint32_t o = 0; o < s.occluders().size(); ++o)
+    if (s.is_terrain_square(o)) squares.push_back(&s.occluders()[o]);
+  ASSERT_GT(squares.size(), 1000u);
+  // The leaves below each node, and the roots above each leaf.
+  std::vector<std::vector<std::uint32_t>> leaves(nodes.size());
+  std::vector<int> roots_above(nodes.size(), 0);
+  std::uint32_t top = 0;
+  for (const std::uint32_t root : pyramid.roots()) {
+    std::vector<std::uint32_t> stack{root}, path;
+    while (!stack.empty()) {
+      const std::uint32_t k = stack.back();
+      stack.pop_back();
+      const TerrainPyramid::Node& n = nodes[k];
+      top = std::max(top, n.level);
+      if (n.level == 0) {
+        ++roots_above[k];
+        leaves[root].push_back(k);
+      }
+      for (const std::int32_t c : n.child) {
+        if (n.level == 0) {
+          EXPECT_EQ(c, -1);
+          continue;
+        }
+        ASSERT_GE(c, 0);
+        EXPECT_EQ(nodes[static_cast<std::size_t>(c)].level + 1, n.level);
+        stack.push_back(static_cast<std::uint32_t>(c));
+      }
+    }
+  }
+  EXPECT_GE(top, 3u) << "squares merged up to 64 m at least";
+  std::size_t leaf_count = 0;
+  for (std::uint32_t k = 0; k < nodes.size(); ++k)
+    if (nodes[k].level == 0) {
+      ++leaf_count;
+      EXPECT_EQ(roots_above[k], 1) << "node " << k;
+    }
+  EXPECT_EQ(leaf_count, squares.size());
+  // Every node's top lies under each grid square below it, over that square (the test reads
+  // the square's own plane at its corners and at random points), within its ground and box.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (std::uint32_t k = 0; k < nodes.size(); ++k) {
+    const TerrainPyramid::Node& n = nodes[k];
+    std::vector<std::uint32_t> below;
+    std::vector<std::uint32_t> stack{k};
+    while (!stack.empty()) {
+      const std::uint32_t j = stack.back();
+      stack.pop_back();
+      if (nodes[j].level == 0) below.push_back(j);
+      for (const std::int32_t c : nodes[j].child)
+        if (c >= 0) stack.push_back(static_cast<std::uint32_t>(c));
+    }
+    ASSERT_EQ(below.size(), std::size_t{1} << (2 * n.level)) << "node " << k;
+    double area = 0;
+    for (const std::uint32_t j : below) {
+      const geometry::Occluder& leaf = nodes[j].occluder;
+      area += leaf.bounds.area();
+      EXPECT_LE(leaf.top_high(), n.box.zmax);
+      EXPECT_TRUE(n.occluder.bounds.overlaps(leaf.bounds));
+      std::vector<Vec2> points = leaf.bounds.corners();
+      for (int r = 0; r < 8; ++r)
+        points.push_back({leaf.bounds.min.x + unit(rng) * (leaf.bounds.max.x - leaf.bounds.min.x),
+                          leaf.bounds.min.y + unit(rng) * (leaf.bounds.max.y - leaf.bounds.min.y)});
+      for (const Vec2& p : points) {
+        EXPECT_LE(n.occluder.top_at(p), leaf.top_at(p) + 1e-9) << "node " << k;
+        EXPECT_GE(n.occluder.top_at(p), leaf.top_at(p) - n.drop - 1e-9) << "node " << k;
+      }
+    }
+    EXPECT_NEAR(area, n.occluder.bounds.area(), 1e-6 * area) << "the node is its squares' ground";
+  }
+  // A horizon takes a node from kSplitRatio sides on, and its squares nearer.
+  for (const TerrainPyramid::Node& n : nodes) {
+    if (n.level == 0) {
+      EXPECT_FALSE(pyramid.split(n, 0));
+      continue;
+    }
+    const double side = n.occluder.bounds.max.x - n.occluder.bounds.min.x;
+    EXPECT_TRUE(pyramid.split(n, 0.99 * TerrainPyramid::kSplitRatio * side));
+    EXPECT_EQ(
+        pyramid.split(n, 1.01 * TerrainPyramid::kSplitRatio * side),
+        n.drop > TerrainPyramid::kDropPerDistance * 1.01 * TerrainPyramid::kSplitRatio * side);
+  }
+}
+
+TEST(FarField, TheTerrainPyramidGivesTheObjectsOfItsSquaresWithFewerWalls) {
+  const BakeScene& s = hilly_scene();
+  // Every square in both horizons: square by square, or merged with distance.
+  FarField pyramid(s, 0, FarField::HorizonTops::All),
+      squares(s, 0, FarField::HorizonTops::All, FarField::TerrainHorizon::Squares);
+  CellCounters pyramid_counts, squares_counts;
+  std::vector<std::uint32_t> cells(s.cell_count());
+  std::iota(cells.begin(), cells.end(), 0u);
+  std::mt19937_64 rng(11);
+  std::shuffle(cells.begin(), cells.end(), rng);
+  cells.resize(std::min<std::size_t>(cells.size(), 80));
+  std::size_t seen = 0, asked = 0;
+  for (std::uint32_t cell : cells) {
+    const std::vector<Vec3> samples = s.samples(cell);
+    std::vector<std::uint32_t> open(s.city().objects.size());
+    std::iota(open.begin(), open.end(), 0u);
+    const std::vector<std::uint32_t> a = sorted(pyramid.visible(samples, open, pyramid_counts));
+    ASSERT_EQ(a, sorted(squares.visible(samples, open, squares_counts))) << "cell " << cell;
+    seen += a.size();
+    asked += open.size();
+  }
+  EXPECT_GT(seen, asked / 50);
+  EXPECT_LT(seen, asked);
+  EXPECT_LT(pyramid_counts.occluders_far_field, squares_counts.occluders_far_field);
+  std::printf("walls: pyramid %zu, squares %zu; sight lines: pyramid %zu, squares %zu\n",
+              static_cast<std::size_t>(pyramid_counts.occluders_far_field),
+              static_cast<std::size_t>(squares_counts.occluders_far_field),
+              static_cast<std::size_t>(pyramid_counts.sight_lines),
+              static_cast<std::size_t>(squares_counts.sight_lines));
 }
 
 TEST(SampleHorizon, AskingAsIsGivesTheSweepsAnswerAndChangesNoLaterOne) {

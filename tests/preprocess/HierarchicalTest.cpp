@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "HillyCity.hpp"
 #include "SlopedLod2City.hpp"
 #include "urbanpvs/cities/CityGenerator.hpp"
 #include "urbanpvs/cities/CityJsonWriter.hpp"
@@ -34,14 +35,7 @@ const geometry::City& small_city() {
 
 // The same city on 40 m of hills (a TINRelief), which occlude (TerrainOccluders.hpp).
 const geometry::City& hilly_city() {
-  static const geometry::City city = [] {
-    cities::CityParams p;
-    p.size_km2 = 0.1;
-    p.seed = 5;
-    p.hills = 40;
-    return geometry::read_city_text(cities::cityJsonText(cities::generateCity(p)),
-                                    "hills.city.json");
-  }();
+  static const geometry::City city = generated_hilly_city(0.1, 40);
   return city;
 }
 

@@ -19,6 +19,7 @@
 #include "urbanpvs/preprocess/visibility/CellMapRenderer.hpp"
 #include "urbanpvs/preprocess/visibility/CullMap.hpp"
 #include "urbanpvs/preprocess/visibility/SpatialIndex.hpp"
+#include "urbanpvs/preprocess/visibility/TerrainPyramid.hpp"
 #include "urbanpvs/runtime/PvsWriter.hpp"
 
 namespace urbanpvs::preprocess {
@@ -81,6 +82,13 @@ class BakeScene {
   const geometry::Occluder& horizon_occluder(std::uint32_t id, double distance) const {
     return distance >= far_outline_distance_ ? far_occluders_[id] : occluders_[id];
   }
+  /// The terrain's sloped squares (--terrain-planes) merged into coarser ones, for the
+  /// horizons; empty without them.
+  const TerrainPyramid& terrain_pyramid() const { return terrain_pyramid_; }
+  /// Whether occluder `id` is one of the terrain's sloped squares (the pyramid's grid).
+  bool is_terrain_square(std::uint32_t id) const {
+    return id >= terrain_squares_.first && id < terrain_squares_.second;
+  }
   const geometry::ViewCellMesh& mesh() const { return mesh_; }
   std::size_t cell_count() const { return mesh_.cells.size(); }
 
@@ -132,6 +140,8 @@ class BakeScene {
   CullMapGrid area_;
   double zlo_ = 0, zhi_ = 0;
   BoxQuadtree object_index_, occluder_index_;
+  std::pair<std::uint32_t, std::uint32_t> terrain_squares_{0, 0};  ///< occluders_[first, second)
+  TerrainPyramid terrain_pyramid_;
   std::vector<geometry::Ring> object_outlines_;
 };
 
