@@ -13,13 +13,19 @@
 // mean PVS, culled share, and the PVS change against an earlier run (--compare DIR: the .pvs
 // files a run with --save DIR left, read with the runtime library; per cell, the entries added
 // and removed). --tool runs another urbanpvs-preprocess binary instead of this build's (an
-// earlier commit's, for the "before" column), with the same arguments.
+// earlier commit's, for the "before" column), with the same arguments. --bake-options adds
+// options to every bake (an experimental setting, other cells), each replacing the city's own
+// option of that name: e.g. Andorra la Vella's square on its DEM with the terrain as sloped
+// squares (README, "Terrain as an occluder"):
+//
+//   preprocess_benchmark --sizes 0 --only andorra --bake-options="--terrain-planes 64
+//     --cells benchmarks/regions/andorra_la_vella.geojson"
 //
 // Each city is generated in one child process and baked in another, so each bake's peak memory
 // is its own, not the generator's or an earlier city's.
 //
 //   preprocess_benchmark [--sizes 1,4,8] [--cities DIR] [--only TEXT] [--threads N]
-//                        [--tool PATH] [--save DIR] [--compare DIR]
+//                        [--tool PATH] [--save DIR] [--compare DIR] [--bake-options="..."]
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,7 +39,9 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "urbanpvs/cities/CityGenerator.hpp"
 #include "urbanpvs/cities/CityJsonWriter.hpp"
@@ -148,6 +156,24 @@ std::string pvs_change(const fs::path& now, const fs::path& before) {
   return text;
 }
 
+// Appends `extra` (options, each with its value when the next item does not start with "--")
+// to `args`, dropping an option of the same name that `args` already has, with its value.
+void with_options(std::vector<std::string>& args, const std::vector<std::string>& extra) {
+  auto has_value = [](const std::vector<std::string>& v, std::size_t i) {
+    return i + 1 < v.size() && !v[i + 1].starts_with("--");
+  };
+  for (std::size_t i = 0; i < extra.size(); ++i) {
+    if (!extra[i].starts_with("--")) continue;
+    for (std::size_t k = 0; k < args.size(); ++k)
+      if (args[k] == extra[i]) {
+        args.erase(args.begin() + static_cast<std::ptrdiff_t>(k),
+                   args.begin() + static_cast<std::ptrdiff_t>(k + (has_value(args, k) ? 2 : 1)));
+        break;
+      }
+  }
+  args.insert(args.end(), extra.begin(), extra.end());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -169,7 +195,15 @@ int main(int argc, char** argv) {
   app.add_option("--tool", tool, "Another urbanpvs-preprocess binary to run instead of this build");
   app.add_option("--save", save, "Keep each city's .pvs in this directory");
   app.add_option("--compare", compare, "Compare each PVS with the .pvs of the same city here");
+  std::string bake_options;
+  app.add_option(
+      "--bake-options", bake_options,
+      "Options for every bake, after '=' and in quotes (--bake-options=\"--terrain-planes "
+      "64\"); each replaces a city's own option of its name");
   CLI11_PARSE(app, argc, argv);
+  std::vector<std::string> extra;
+  for (std::istringstream words(bake_options); !words.eof();)
+    if (std::string w; words >> w) extra.push_back(w);
 
   const fs::path dir =
       fs::temp_directory_path() / ("urbanpvs_preprocess_benchmark_" + std::to_string(::getpid()));
@@ -215,6 +249,7 @@ int main(int argc, char** argv) {
                                      std::to_string(threads),
                                      "--quiet"};
     args.insert(args.end(), city.options.begin(), city.options.end());
+    with_options(args, extra);
     std::vector<const char*> argp;
     for (const std::string& a : args) argp.push_back(a.c_str());
     const int rc = in_child([&] {
@@ -261,8 +296,9 @@ int main(int argc, char** argv) {
     fs::remove(report);
   }
   fs::remove_all(dir);
-  std::printf("threads: %u%s%s\n", threads,
-              tool.empty() ? "" : ", tool: ", tool.empty() ? "" : tool.c_str());
+  std::printf("threads: %u%s%s%s%s\n", threads,
+              tool.empty() ? "" : ", tool: ", tool.empty() ? "" : tool.c_str(),
+              bake_options.empty() ? "" : ", bake options: ", bake_options.c_str());
   std::printf(
       "| city | objects | cells | cells/s | thread-ms/cell | thread-µs/PVS entry | peak MiB | mean "
       "PVS | culled %% | PVS vs before |\n");
