@@ -44,6 +44,11 @@ void for_each_bit(std::uint64_t word, std::size_t w, F&& f) {
 // objects (README, "Steep sloped tops stay out of the horizons").
 constexpr double kSteepTop = 0.25;
 
+// A sweep asked about at most this many objects watches only their sectors. Building the
+// watch costs a box view per object; a sample asked about every open object (thousands) would
+// watch nearly all round anyway.
+constexpr std::size_t kWatchedAsk = 256;
+
 // Wraps a stamp; clears the marks it stamps when it comes round to 0.
 void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uint32_t>*> marks) {
   if (++stamp != 0) return;
@@ -54,9 +59,10 @@ void next_stamp(std::uint32_t& stamp, std::initializer_list<std::vector<std::uin
 }  // namespace
 
 FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops tops,
-                   TerrainHorizon terrain)
+                   TerrainHorizon terrain, SweepWatch watch)
     : scene_(scene),
       terrain_(terrain == TerrainHorizon::Pyramid ? &scene.terrain_pyramid() : nullptr),
+      watch_(watch),
       seen_in_sweep_(scene.city().objects.size(), 0) {
   const std::size_t objects = scene.city().objects.size();
   const std::size_t words = (objects + 63) / 64;
@@ -322,6 +328,22 @@ void FarField::sweep(const Vec3& sample, CellCounters& c, std::vector<std::uint3
   {
     SampleHorizon& h = horizon_;
     h.reset(sample);
+    // A sample asked about a few objects (one kept from a neighbouring cell, asked what this
+    // cell's maps left open besides) watches only their directions: its sweep then skips the
+    // occluders everywhere else, and its answers are the same (SampleHorizon::watch_none). A
+    // quarter of the sweeps are such on the generated cities; each went on all round until it
+    // passed the farthest of its objects.
+    std::size_t asked = 0;
+    for (const std::uint64_t w : ask_) asked += static_cast<std::size_t>(std::popcount(w));
+    if (watch_ == SweepWatch::FewObjects && asked <= kWatchedAsk) {
+      h.watch_none();
+      bool narrow = true;
+      for (std::size_t w = 0; w < ask_.size() && narrow; ++w)
+        for_each_bit(ask_[w], w, [&](std::uint32_t k) {
+          if (narrow) narrow = h.watch(raised(centres_box(object_at_[k])));
+        });
+      if (narrow) ++c.narrow_sweeps;
+    }
     heap.clear();
     std::size_t object_events = 0;  // the sweep stops when no object is left to meet
     auto push = [&](double d, Kind kind, std::uint32_t id) {

@@ -75,6 +75,7 @@ void SampleHorizon::reset(const Vec3& sample) {
   std::fill(settled_.begin(), settled_.end(), Entry{0, -std::numeric_limits<double>::infinity()});
   std::fill(pending_count_.begin(), pending_count_.end(), std::uint8_t{0});
   std::fill(first_pending_.begin(), first_pending_.end(), std::numeric_limits<double>::infinity());
+  watching_all_ = true;
 }
 
 double SampleHorizon::distance_to(const geometry::Box2& box) const {
@@ -270,32 +271,53 @@ bool SampleHorizon::hides_as_is(const geometry::Box3& box) const {
 }
 
 bool SampleHorizon::covers(const BoxView& v) const {
-  const double d = v.distance, reach = v.reach, rise = v.rise;
-  const geometry::Box2& rel = v.rel;
   // The nearest point of the whole box, and whether a sector's wedge holds it.
-  const Vec2 nearest{std::clamp(0.0, rel.min.x, rel.max.x), std::clamp(0.0, rel.min.y, rel.max.y)};
+  const Vec2 nearest{std::clamp(0.0, v.rel.min.x, v.rel.max.x),
+                     std::clamp(0.0, v.rel.min.y, v.rel.max.y)};
+  for (long long t = v.first; t <= v.last; ++t)
+    if (watched(bin_of(t)) && !covers_sector(v, nearest, t)) return false;
+  return true;
+}
+
+bool SampleHorizon::covers_sector(const BoxView& v, Vec2 nearest, long long t) const {
+  const double d = v.distance, reach = v.reach, rise = v.rise;
+  const int b = bin_of(t);
+  // The walls passed at the box's nearest distance (settled there by hides(), or still
+  // pending: slope_at counts both alike).
+  const double passed = slope_at(b, d);
+  if (rise > 0 ? passed * d > rise : passed * reach > rise) return true;  // hidden already
+  // Else look closer: the nearest point of the box inside the sector's wedge is the box's
+  // nearest point when the wedge holds it, else where one of the wedge's borders enters the
+  // box; walls still pending up to that distance count too.
+  const double a0 = std::max(v.lo, static_cast<double>(t) * kSector);
+  const double a1 = std::min(v.hi, static_cast<double>(t + 1) * kSector);
+  const Vec2 u0 = t == v.first ? direction(a0) : border(t);
+  const Vec2 u1 = t == v.last ? direction(a1) : border(t + 1);
+  double near = d;
+  if (!(geometry::cross(u0, nearest) >= 0 && geometry::cross(nearest, u1) >= 0)) {
+    near = std::min(entry_along(v.rel, u0), entry_along(v.rel, u1));
+    near = std::isfinite(near) ? std::max(d, near * (1 - 1e-9)) : d;
+  }
+  // The steepest slope a point of the box's top shows in this sector: at its nearest distance
+  // when the top is above the sample, at the farthest when below.
+  const double needed = rise / (rise > 0 ? near : reach);
+  return slope_at(b, near) > needed;
+}
+
+void SampleHorizon::watch_none() {
+  watching_all_ = false;
+  std::fill(watched_.begin(), watched_.end(), 0);
+}
+
+bool SampleHorizon::watch(const geometry::Box3& box) {
+  const BoxView v = view(box);
+  if (!(v.distance > 0) || v.last - v.first + 1 >= kBins) {
+    watching_all_ = true;
+    return false;
+  }
   for (long long t = v.first; t <= v.last; ++t) {
-    const int b = bin_of(t);
-    // The walls passed at the box's nearest distance (settled there by hides(), or still
-    // pending: slope_at counts both alike).
-    const double passed = slope_at(b, d);
-    if (rise > 0 ? passed * d > rise : passed * reach > rise) continue;  // hidden already
-    // Else look closer: the nearest point of the box inside the sector's wedge is the box's
-    // nearest point when the wedge holds it, else where one of the wedge's borders enters the
-    // box; walls still pending up to that distance count too.
-    const double a0 = std::max(v.lo, static_cast<double>(t) * kSector);
-    const double a1 = std::min(v.hi, static_cast<double>(t + 1) * kSector);
-    const Vec2 u0 = t == v.first ? direction(a0) : border(t);
-    const Vec2 u1 = t == v.last ? direction(a1) : border(t + 1);
-    double near = d;
-    if (!(geometry::cross(u0, nearest) >= 0 && geometry::cross(nearest, u1) >= 0)) {
-      near = std::min(entry_along(rel, u0), entry_along(rel, u1));
-      near = std::isfinite(near) ? std::max(d, near * (1 - 1e-9)) : d;
-    }
-    // The steepest slope a point of the box's top shows in this sector: at its nearest distance
-    // when the top is above the sample, at the farthest when below.
-    const double needed = rise / (rise > 0 ? near : reach);
-    if (!(slope_at(b, near) > needed)) return false;
+    const auto b = static_cast<std::size_t>(bin_of(t));
+    watched_[b >> 6] |= std::uint64_t{1} << (b & 63);
   }
   return true;
 }

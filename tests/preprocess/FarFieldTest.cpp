@@ -4,7 +4,8 @@
 // none, over cells taken in random order with random open sets (as the near maps would leave
 // them); the horizon's query that leaves the sweep as it is gives the answers of the one that
 // moves it; horizons that leave out steep sloped tops give the answers of horizons that take
-// every top; the objects "all but the decided" give what their list gives; and the Hilbert
+// every top; sweeps that watch only their few objects' directions give what sweeps all round
+// give; the objects "all but the decided" give what their list gives; and the Hilbert
 // order is a permutation that walks from neighbour to neighbour.
 #include <gtest/gtest.h>
 
@@ -344,6 +345,58 @@ TEST(SampleHorizon, AskingAsIsGivesTheSweepsAnswerAndChangesNoLaterOne) {
     }
   }
   EXPECT_GT(hidden, 0u);
+}
+
+// Sweeps asked about few objects watch only their directions (SampleHorizon::watch_none): the
+// same objects as sweeps all round, with fewer walls. Open sets of 1 to 40 objects (as a kept
+// sample of a neighbouring cell is asked) and of all of them, on a flat generated city, on
+// pitched LoD2 roofs (sloped tops, steep ones out of the horizons) and on hills whose terrain
+// squares occlude (walls below the eye, the pyramid's merged squares).
+void expect_watching_few_objects_changes_no_answer(const BakeScene& s, std::size_t cells) {
+  const std::size_t objects = s.city().objects.size();
+  ASSERT_GT(objects, 64u);
+  // Without kept answers, so that both sweep every sample and the counts compare.
+  FarField watching(s, 0),
+      all_round(s, 0, FarField::HorizonTops::AllButSteep, FarField::TerrainHorizon::Pyramid,
+                FarField::SweepWatch::AllRound);
+  CellCounters watching_counts, all_round_counts;
+  std::mt19937_64 rng(11);
+  std::size_t seen = 0, hidden = 0;
+  for (std::uint32_t cell = 0; cell < std::min<std::size_t>(cells, s.cell_count()); ++cell) {
+    std::vector<std::uint32_t> open(objects);
+    std::iota(open.begin(), open.end(), 0u);
+    if (cell % 4 != 0) {
+      std::shuffle(open.begin(), open.end(), rng);
+      open.resize(1 + rng() % 40);
+      std::sort(open.begin(), open.end());
+    }
+    const std::vector<Vec3> samples = s.samples(cell);
+    const std::vector<std::uint32_t> a = sorted(watching.visible(samples, open, watching_counts));
+    ASSERT_EQ(a, sorted(all_round.visible(samples, open, all_round_counts))) << "cell " << cell;
+    if (open.size() < objects) {
+      seen += a.size();
+      hidden += open.size() - a.size();
+    }
+  }
+  // Not vacuous: few-object sweeps found objects both seen and hidden, and they watched.
+  EXPECT_GT(seen, 0u);
+  EXPECT_GT(hidden, 0u);
+  EXPECT_EQ(all_round_counts.narrow_sweeps, 0u);
+  EXPECT_GT(watching_counts.narrow_sweeps, watching_counts.sample_sweeps / 2);
+  EXPECT_EQ(watching_counts.sample_sweeps, all_round_counts.sample_sweeps);
+  EXPECT_LT(watching_counts.occluders_far_field, all_round_counts.occluders_far_field * 3 / 4);
+}
+
+TEST(FarField, SweepsThatWatchTheirFewObjectsGiveTheSameObjectsWithFewerWalls) {
+  expect_watching_few_objects_changes_no_answer(scene(), 160);
+}
+
+TEST(FarField, SweepsThatWatchTheirFewObjectsGiveTheSameObjectsOnPitchedRoofs) {
+  expect_watching_few_objects_changes_no_answer(sloped_scene(), 120);
+}
+
+TEST(FarField, SweepsThatWatchTheirFewObjectsGiveTheSameObjectsOnHills) {
+  expect_watching_few_objects_changes_no_answer(hilly_scene(), 120);
 }
 
 TEST(CellOrder, AlongTheHilbertCurveIsAPermutationThatStepsToNeighbours) {

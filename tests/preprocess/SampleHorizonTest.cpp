@@ -200,6 +200,72 @@ TEST(SampleHorizon, HidesOnlyWhatEverySightLineShowsHidden) {
   std::printf("hidden %zu of %zu boxes\n", hidden, tested);
 }
 
+// A sweep that watches a few boxes' sectors (as the far field's sweeps asked about few objects
+// do) skips every occluder whose box it finds hidden in them, so every occluder in another
+// direction; it must still say of the watched boxes what a sweep that adds every occluder says,
+// and count a box in no watched sector as hidden.
+TEST(SampleHorizon, AWatchedSweepSaysOfItsBoxesWhatTheFullSweepSays) {
+  std::mt19937_64 rng(29);
+  Uniform pos(-200, 200), size(4, 30), top(3, 40), eye(0.5, 6), box_size(1, 15);
+  std::size_t asked = 0, hidden = 0, skipped = 0, added = 0, outside = 0;
+  for (int scene = 0; scene < 40; ++scene) {
+    std::vector<Occluder> occluders;
+    for (int k = 0; k < 60; ++k) {
+      auto [c, shape] = random_star(k, pos, size, rng);
+      occluders.push_back(make_occluder(std::move(shape), top(rng)));
+    }
+    const Vec3 s = free_sample(occluders, rng, pos, eye);
+    const std::vector<Box3> boxes =
+        random_boxes(rng, pos, box_size, [&] { return top(rng) * 0.8; });
+    std::vector<std::size_t> watched;  // 1 to 4 boxes clear of the sample
+    const std::size_t n = 1 + rng() % 4;
+    for (std::size_t k = 0; k < boxes.size() && watched.size() < n; ++k)
+      if (!boxes[k].xy.grown(1).overlaps({{s.x, s.y}, {s.x, s.y}})) watched.push_back(k);
+    SampleHorizon full, few;
+    full.reset(s);
+    few.reset(s);
+    few.watch_none();
+    for (const std::size_t k : watched) ASSERT_TRUE(few.watch(boxes[k]));
+    std::vector<Item> items;
+    for (std::size_t i = 0; i < occluders.size(); ++i)
+      items.push_back({full.distance_to(occluders[i].bounds), 0, i});
+    for (const std::size_t k : watched) items.push_back({full.distance_to(boxes[k].xy), 1, k});
+    std::sort(items.begin(), items.end());
+    for (const Item& it : items) {
+      if (it.kind == 1) {
+        const bool h = full.hides_as_is(boxes[it.index]);
+        ASSERT_EQ(few.hides_as_is(boxes[it.index]), h) << "scene " << scene << " box " << it.index;
+        ++asked;
+        hidden += h ? 1 : 0;
+        continue;
+      }
+      const Occluder& o = occluders[it.index];
+      full.add(o);
+      if (few.hides({o.bounds, 0, o.top_z})) {
+        ++skipped;
+        continue;
+      }
+      few.add(o);
+      ++added;
+    }
+    // A box straight behind the sample from the first watched one, far off: in no watched
+    // sector when one box is watched.
+    if (watched.size() == 1) {
+      const Vec2 c = 0.5 * (boxes[watched[0]].xy.min + boxes[watched[0]].xy.max);
+      const Vec2 away = Vec2{s.x, s.y} - 3.0 * (c - Vec2{s.x, s.y});
+      const Box3 behind{{away - Vec2{0.5, 0.5}, away + Vec2{0.5, 0.5}}, 0, 1e7};
+      EXPECT_TRUE(few.hides_as_is(behind));
+      EXPECT_FALSE(full.hides_as_is(behind));  // nothing hides a top 10,000 km high
+      ++outside;
+    }
+  }
+  // Not vacuous: boxes both hidden and seen, and most occluders skipped.
+  EXPECT_GT(hidden, 0u);
+  EXPECT_LT(hidden, asked);
+  EXPECT_GT(skipped, added);
+  EXPECT_GT(outside, 0u);
+}
+
 // Looking down from a hillside: every top lies below the eye, some of them sloped, some of them
 // thin walls seen at a slant, where the crossings within a sector lie far apart. A ray that
 // passes a facing wall below its top enters the occluder (thesis 4.2.1) whether the wall rises

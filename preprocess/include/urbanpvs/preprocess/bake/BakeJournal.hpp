@@ -64,7 +64,8 @@ struct JournalContents {
   std::uint64_t dropped_bytes = 0;  ///< a torn or damaged tail after them
 };
 
-inline constexpr std::uint32_t kJournalVersion = 3;  // 3: the far field's sweep counters
+inline constexpr std::uint32_t kJournalVersion =
+    4;  // 3: the far field's sweep counters; 4: narrow_sweeps
 inline constexpr std::size_t kJournalHeaderSize = 40;
 
 std::vector<unsigned char> encode_journal_header(const JournalIdentity& identity);

@@ -28,6 +28,7 @@ struct CellCounters {
   std::uint64_t occluders_far_field = 0;       ///< occluders added to them (over samples)
   std::uint64_t sight_lines = 0;               ///< pixel centres traced exactly (SightLine)
   std::uint64_t sample_sweeps = 0;             ///< far-field sweeps, one sample each
+  std::uint64_t narrow_sweeps = 0;   ///< of them, those that watched only their asked objects
   std::uint64_t sweeps_spared = 0;   ///< samples whose kept answers (FarField) made one needless
   std::uint64_t shadows = 0;         ///< shadow polygons rasterized
   std::uint64_t pixels_written = 0;  ///< by the CPU rasterizer
@@ -35,7 +36,7 @@ struct CellCounters {
   CellCounters& operator+=(const CellCounters& o);
 };
 
-inline constexpr std::array<std::pair<const char*, std::uint64_t CellCounters::*>, 18>
+inline constexpr std::array<std::pair<const char*, std::uint64_t CellCounters::*>, 19>
     kCellCounterFields = {{
         {"cells", &CellCounters::cells},
         {"maps", &CellCounters::maps},
@@ -52,6 +53,7 @@ inline constexpr std::array<std::pair<const char*, std::uint64_t CellCounters::*
         {"occluders_far_field", &CellCounters::occluders_far_field},
         {"sight_lines", &CellCounters::sight_lines},
         {"sample_sweeps", &CellCounters::sample_sweeps},
+        {"narrow_sweeps", &CellCounters::narrow_sweeps},
         {"sweeps_spared", &CellCounters::sweeps_spared},
         {"shadows", &CellCounters::shadows},
         {"pixels_written", &CellCounters::pixels_written},

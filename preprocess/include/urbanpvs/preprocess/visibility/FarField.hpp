@@ -49,11 +49,19 @@ class FarField {
   /// time (README, "Terrain as an occluder").
   enum class TerrainHorizon { Pyramid, Squares };
 
+  /// Where a sweep asked about few objects looks: only in their directions (the occluders in
+  /// every other direction skipped), or all round as a sweep asked about every object does.
+  /// The PVS is the same either way (SampleHorizon::watch_none says why); on the generated
+  /// cities a quarter of the sweeps are such, and watching their objects alone adds 18-24 %
+  /// fewer walls to the horizons (README, "Sweeps that watch their few objects").
+  enum class SweepWatch { FewObjects, AllRound };
+
   /// Keeps the answers of up to `kept_samples` samples (0: none); fewer when one sample's
   /// answers (two bits per object of the city) would make them take more than kKeptBytes.
   explicit FarField(const BakeScene& scene, std::size_t kept_samples = kKeptSamples,
                     HorizonTops tops = HorizonTops::AllButSteep,
-                    TerrainHorizon terrain = TerrainHorizon::Pyramid);
+                    TerrainHorizon terrain = TerrainHorizon::Pyramid,
+                    SweepWatch watch = SweepWatch::FewObjects);
 
   static constexpr std::size_t kKeptSamples = 256;
   static constexpr std::size_t kKeptBytes = std::size_t{32} << 20;
@@ -110,6 +118,7 @@ class FarField {
   BoxQuadtree horizon_tree_;
   std::vector<std::uint32_t> horizon_ids_;
   const TerrainPyramid* terrain_ = nullptr;  ///< null: the squares are in horizon_tree_
+  SweepWatch watch_;
   Bits open_, found_, ask_;  ///< this call's open objects, those found visible, a sweep's asked
   std::vector<std::uint32_t> seen_in_sweep_;  ///< valid where equal to sweep_stamp_
   std::uint32_t sweep_stamp_ = 0;

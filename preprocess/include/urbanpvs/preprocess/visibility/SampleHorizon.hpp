@@ -67,6 +67,19 @@ class SampleHorizon {
   /// alone, never on which other objects were asked before (FarField reuses it across cells).
   bool hides_as_is(const geometry::Box3& box) const;
 
+  /// Narrows what hides() and hides_as_is() are asked about, until reset(), to the sectors of
+  /// the boxes then passed to watch(): a box counts as hidden when it is hidden in each watched
+  /// sector it spans, and one that spans none of them counts as hidden outright. For a sweep
+  /// that decides a few objects: it skips the occluders in every other direction. What it then
+  /// says of a box within the watched sectors is what it says when every sector is watched,
+  /// since the occluders it skips put no wall into those sectors, and those it keeps put the same
+  /// walls there (a node of occluders skipped as hidden in them adds nothing there either: its
+  /// walls lie behind the walls that hid it).
+  void watch_none();
+  /// Watches the sectors `box` spans. False, and every sector watched again, when it has none
+  /// (the sample in it, or a box all round).
+  bool watch(const geometry::Box3& box);
+
   /// True when the point `p` at height `top` is hidden by the walls added so far. For
   /// deciding objects the way a cull map does, by the pixel centres their box touches (thesis 7.2),
   /// where the box as a whole is not hidden.
@@ -92,6 +105,12 @@ class SampleHorizon {
   };
   BoxView view(const geometry::Box3& box) const;
   bool covers(const BoxView& v) const;  ///< hides(), given the walls passed as they stand
+  /// covers() in sector t alone; `nearest`: the box's nearest point, relative to the sample.
+  bool covers_sector(const BoxView& v, Vec2 nearest, long long t) const;
+  bool watched(int bin) const {
+    const auto b = static_cast<std::size_t>(bin);
+    return watching_all_ || ((watched_[b >> 6] >> (b & 63)) & 1u) != 0;
+  }
 
   void add_ring(const geometry::Ring& ring, const geometry::Occluder& occluder, bool hole);
   template <class Angle>
@@ -111,6 +130,8 @@ class SampleHorizon {
   std::vector<std::uint8_t> pending_count_;
   /// per sector: no pending wall reaches nearer (a lower bound: walls dropped or folded leave it)
   std::vector<double> first_pending_;
+  bool watching_all_ = true;
+  std::array<std::uint64_t, kBins / 64> watched_{};  ///< sectors watched (watch())
   std::vector<double> angle_, reach_;    ///< scratch of add_ring (reach_ per sector, kept 0)
   std::vector<double> near_;             ///< scratch of add_ring: per sector, nearest crossing
   std::vector<double> low_;              ///< scratch of add_ring: per sector, its lowest wall end
