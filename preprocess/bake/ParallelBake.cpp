@@ -8,37 +8,53 @@
 #include <exception>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 #include "urbanpvs/preprocess/bake/CellOrder.hpp"
 
 namespace urbanpvs::preprocess {
 namespace {
 
-// Hands out chunks of the cell list. Chunks shrink towards the end (a quarter of a thread's
-// share of what is left), so the last chunks finish close together instead of one thread
-// working alone through 64 slow cells.
+// Hands out chunks of the cell list, which runs along the Hilbert curve. Each thread owns one
+// stretch of it and takes its chunks from the front, so that it walks from neighbour to
+// neighbour and its FarField finds their shared samples kept; threads that took chunks in turn
+// from one shared counter each saw every other chunk, and lost the samples across its ends.
+// A thread whose stretch is done takes the back half of the longest one left.
 class ChunkQueue {
  public:
   ChunkQueue(std::size_t size, unsigned threads, std::size_t max_chunk)
-      : size_(size), threads_(threads), max_chunk_(std::max<std::size_t>(1, max_chunk)) {}
+      : max_chunk_(std::max<std::size_t>(1, max_chunk)) {
+    for (unsigned t = 0; t < threads; ++t)
+      stretch_.push_back({size * t / threads, size * (t + 1) / threads});
+  }
 
-  /// False when no cell is left.
-  bool take(std::size_t& begin, std::size_t& end) {
+  /// Thread t's next chunk; false when no cell is left.
+  bool take(unsigned t, std::size_t& begin, std::size_t& end) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (next_ == size_) return false;
-    const std::size_t left = size_ - next_;
-    const std::size_t chunk = std::clamp<std::size_t>(left / (4 * threads_), 1, max_chunk_);
-    begin = next_;
-    end = next_ + chunk;
-    next_ = end;
+    Stretch& own = stretch_[t];
+    if (own.begin == own.end) {
+      auto longest = std::max_element(
+          stretch_.begin(), stretch_.end(),
+          [](const Stretch& a, const Stretch& b) { return a.end - a.begin < b.end - b.begin; });
+      if (longest->begin == longest->end) return false;
+      const std::size_t middle = longest->begin + (longest->end - longest->begin) / 2;
+      own = {middle, longest->end};
+      longest->end = middle;
+    }
+    // A quarter of what the stretch has left, so that near the end the chunk being worked on
+    // (which no other thread can take) is short, and the last cells finish close together.
+    begin = own.begin;
+    end = own.begin + std::clamp<std::size_t>((own.end - own.begin) / 4, 1, max_chunk_);
+    own.begin = end;
     return true;
   }
 
  private:
+  struct Stretch {
+    std::size_t begin, end;
+  };
   std::mutex mutex_;
-  std::size_t next_ = 0;
-  const std::size_t size_;
-  const std::size_t threads_;
+  std::vector<Stretch> stretch_;  ///< per thread: the cells it has still to take
   const std::size_t max_chunk_;
 };
 
@@ -59,11 +75,11 @@ void bake_cells(const BakeScene& scene, std::span<const std::uint32_t> cells,
   std::exception_ptr failure;
   unsigned running = threads;
 
-  auto work = [&] {
+  auto work = [&](unsigned t) {
     try {
       CellVisibility visibility(scene);
       std::size_t begin = 0, end = 0;
-      while (!stop.load(std::memory_order_relaxed) && queue.take(begin, end)) {
+      while (!stop.load(std::memory_order_relaxed) && queue.take(t, begin, end)) {
         for (std::size_t i = begin; i < end && !stop.load(std::memory_order_relaxed); ++i) {
           CellOutcome outcome;
           outcome.cell = order[i];
@@ -85,7 +101,7 @@ void bake_cells(const BakeScene& scene, std::span<const std::uint32_t> cells,
   std::vector<std::thread> workers;
   workers.reserve(threads);
   try {
-    for (unsigned t = 0; t < threads; ++t) workers.emplace_back(work);
+    for (unsigned t = 0; t < threads; ++t) workers.emplace_back(work, t);
   } catch (...) {
     // Could not start a thread: let the started ones stop, then report.
     stop.store(true);

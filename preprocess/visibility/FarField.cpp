@@ -68,10 +68,19 @@ FarField::FarField(const BakeScene& scene, std::size_t kept_samples, HorizonTops
   const std::size_t words = (objects + 63) / 64;
   const std::size_t bytes = std::max<std::size_t>(1, 2 * words * sizeof(std::uint64_t));
   answers_.resize(std::min(kept_samples, kKeptBytes / bytes));
-  for (SampleAnswers& a : answers_) {
+  // Every slot free, in one list from the oldest (slot 0) to the newest.
+  for (std::uint32_t k = 0; k < answers_.size(); ++k) {
+    SampleAnswers& a = answers_[k];
     a.asked.assign(words, 0);
     a.seen.assign(words, 0);
+    a.older = k == 0 ? kNoSlot : k - 1;
+    a.newer = k + 1 == answers_.size() ? kNoSlot : k + 1;
   }
+  if (!answers_.empty()) {
+    oldest_ = 0;
+    newest_ = static_cast<std::uint32_t>(answers_.size() - 1);
+  }
+  slot_of_.reserve(answers_.size());
   open_.assign(words, 0);
   found_.assign(words, 0);
   ask_.assign(words, 0);
@@ -126,26 +135,57 @@ bool FarField::any_asked(Run run) const {
   return false;
 }
 
+std::size_t FarField::SampleKeyHash::operator()(const SampleKey& k) const noexcept {
+  // The three words mixed by odd multipliers (splitmix64's), then folded.
+  std::uint64_t h = k.x * 0x9e3779b97f4a7c15ull;
+  h ^= (k.y + (h >> 29)) * 0xbf58476d1ce4e5b9ull;
+  h ^= (k.z + (h >> 31)) * 0x94d049bb133111ebull;
+  return static_cast<std::size_t>(h ^ (h >> 32));
+}
+
+FarField::SampleKey FarField::key_of(const Vec3& s) {
+  return {std::bit_cast<std::uint64_t>(s.x), std::bit_cast<std::uint64_t>(s.y),
+          std::bit_cast<std::uint64_t>(s.z)};
+}
+
+void FarField::touch(std::uint32_t k) {
+  if (k == newest_) return;
+  SampleAnswers& a = answers_[k];
+  // Unlink (k is not the newest, so a.newer is a slot)...
+  answers_[a.newer].older = a.older;
+  if (a.older != kNoSlot)
+    answers_[a.older].newer = a.newer;
+  else
+    oldest_ = a.newer;
+  // ...and link at the newest end.
+  a.older = newest_;
+  a.newer = kNoSlot;
+  answers_[newest_].newer = k;
+  newest_ = k;
+}
+
 FarField::SampleAnswers* FarField::kept(const Vec3& sample) {
-  for (SampleAnswers& a : answers_)
-    if (a.last_used != 0 && a.sample == sample) {
-      a.last_used = calls_;
-      return &a;
-    }
-  return nullptr;
+  const auto it = slot_of_.find(key_of(sample));
+  if (it == slot_of_.end()) return nullptr;
+  answers_[it->second].last_used = calls_;
+  touch(it->second);
+  return &answers_[it->second];
 }
 
 FarField::SampleAnswers* FarField::keep(const Vec3& sample) {
-  // The least recently read; never one this call reads (its pointer is in known_).
-  SampleAnswers* slot = nullptr;
-  for (SampleAnswers& a : answers_)
-    if (a.last_used != calls_ && (!slot || a.last_used < slot->last_used)) slot = &a;
-  if (!slot) return nullptr;
-  slot->sample = sample;
-  slot->last_used = calls_;
-  std::fill(slot->asked.begin(), slot->asked.end(), 0);
-  std::fill(slot->seen.begin(), slot->seen.end(), 0);
-  return slot;
+  // The least recently read; never one this call reads (its pointer is in known_). Slots read
+  // by this call are the newest, so when the oldest is one of them, all are.
+  if (oldest_ == kNoSlot || answers_[oldest_].last_used == calls_) return nullptr;
+  const std::uint32_t k = oldest_;
+  SampleAnswers& slot = answers_[k];
+  if (slot.last_used != 0) slot_of_.erase(key_of(slot.sample));
+  slot.sample = sample;
+  slot.last_used = calls_;
+  std::fill(slot.asked.begin(), slot.asked.end(), 0);
+  std::fill(slot.seen.begin(), slot.seen.end(), 0);
+  slot_of_[key_of(sample)] = k;
+  touch(k);
+  return &slot;
 }
 
 std::vector<std::uint32_t> FarField::visible(std::span<const Vec3> samples,

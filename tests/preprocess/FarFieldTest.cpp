@@ -5,15 +5,18 @@
 // them); the horizon's query that leaves the sweep as it is gives the answers of the one that
 // moves it; horizons that leave out steep sloped tops give the answers of horizons that take
 // every top; sweeps that watch only their few objects' directions give what sweeps all round
-// give; the objects "all but the decided" give what their list gives; and the Hilbert
-// order is a permutation that walks from neighbour to neighbour.
+// give; the objects "all but the decided" give what their list gives; the Hilbert order is a
+// permutation that walks from neighbour to neighbour, and the threads walk it in stretches.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <mutex>
 #include <numeric>
 #include <random>
+#include <thread>
 
 #include "HillyCity.hpp"
 #include "SlopedLod2City.hpp"
@@ -22,6 +25,7 @@
 #include "urbanpvs/geometry/city/CityReader.hpp"
 #include "urbanpvs/preprocess/bake/BakeScene.hpp"
 #include "urbanpvs/preprocess/bake/CellOrder.hpp"
+#include "urbanpvs/preprocess/bake/ParallelBake.hpp"
 #include "urbanpvs/preprocess/visibility/FarField.hpp"
 
 namespace urbanpvs::preprocess {
@@ -426,6 +430,45 @@ TEST(CellOrder, AlongTheHilbertCurveIsAPermutationThatStepsToNeighbours) {
   // A subset (the cells of one bake part) keeps its own cells only.
   const std::vector<std::uint32_t> part(cells.begin() + 10, cells.begin() + 40);
   EXPECT_EQ(sorted(along_hilbert_curve(mesh, part)), part);
+}
+
+// bake_cells hands each thread a stretch of the Hilbert order and takes its chunks from the
+// front, so that the thread's FarField finds its neighbours' samples kept; a thread done early
+// takes half of the longest stretch left. Every cell once, the same PVS as one thread, on any
+// thread count and chunk size, and each thread's cells few runs of the order (taking chunks in
+// turn from one counter gave each thread every other chunk: 120 runs for chunks of one).
+TEST(ParallelBake, EveryCellOnceWithTheSamePvsAndEachThreadAlongFewStretches) {
+  const BakeScene& s = scene();
+  std::vector<std::uint32_t> cells(std::min<std::size_t>(s.cell_count(), 240));
+  std::iota(cells.begin(), cells.end(), 0u);
+  const std::vector<std::uint32_t> order = along_hilbert_curve(s.mesh(), cells);
+  std::vector<std::size_t> position(s.cell_count());
+  for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = k;
+
+  std::vector<std::vector<std::uint32_t>> one_thread(s.cell_count());
+  bake_cells(s, cells, ParallelBakeOptions{}, [&](CellOutcome& o) { one_thread[o.cell] = o.pvs; });
+  for (const unsigned threads : {2u, 3u, 5u})
+    for (const std::size_t chunk : {std::size_t{1}, std::size_t{7}, std::size_t{64}}) {
+      std::mutex m;
+      std::vector<int> times(s.cell_count(), 0);
+      std::map<std::thread::id, std::vector<std::size_t>> taken;
+      ParallelBakeOptions options;
+      options.threads = threads;
+      options.max_chunk = chunk;
+      bake_cells(s, cells, options, [&](CellOutcome& o) {
+        const std::lock_guard<std::mutex> lock(m);
+        ++times[o.cell];
+        EXPECT_EQ(o.pvs, one_thread[o.cell]) << "cell " << o.cell;
+        taken[std::this_thread::get_id()].push_back(position[o.cell]);
+      });
+      for (const std::uint32_t c : cells) ASSERT_EQ(times[c], 1) << "cell " << c;
+      for (auto& [id, at] : taken) {
+        std::sort(at.begin(), at.end());
+        std::size_t runs = 1;
+        for (std::size_t k = 1; k < at.size(); ++k) runs += at[k] != at[k - 1] + 1 ? 1 : 0;
+        EXPECT_LE(runs, 20u) << threads << " threads, chunks of " << chunk;
+      }
+    }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Cells are independent (thesis 5.2.4): a list of cells is cut into chunks that threads take
-// from a shared counter, each thread with its own CellVisibility (and cull-map context). Results
+// Cells are independent (thesis 5.2.4): a list of cells, in Hilbert order, is cut into one
+// stretch per thread, each thread with its own CellVisibility (and cull-map context), and a
+// thread done early takes half of the longest stretch left. Results
 // are handed to the caller per cell, so it can store them by cell index and assemble the file
 // in cell order: the output does not depend on the thread count or the order cells finish in.
 // The same function serves any subset of cells, e.g. the missing ones after a resume, or one
